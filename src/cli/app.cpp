@@ -1,0 +1,102 @@
+#include "cli/app.h"
+
+#include "core/errors.h"
+#include "core/log.h"
+#include "core/progress.h"
+
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+
+namespace polycube::cli {
+
+namespace {
+
+//! A one-line progress bar on stderr, redrawn in place.
+class TerminalProgress : public core::ProgressClient {
+ public:
+  void begin(const std::string& task) override { draw(task, 0.0); }
+  void progress(const std::string& task, double fraction) override { draw(task, fraction); }
+  void end(const std::string& task, bool ok) override {
+    (void)task;
+    (void)ok;
+    std::fprintf(stderr, "\r\033[K");
+    std::fflush(stderr);
+  }
+
+ private:
+  static void draw(const std::string& task, double f) {
+    constexpr int kWidth = 30;
+    const int filled = static_cast<int>(f * kWidth);
+    std::string bar(static_cast<std::size_t>(filled), '#');
+    bar.resize(kWidth, '.');
+    std::fprintf(stderr, "\r\033[K%-24.24s [%s] %3d%%", task.c_str(), bar.c_str(),
+                 static_cast<int>(f * 100.0));
+    std::fflush(stderr);
+  }
+};
+
+}  // namespace
+
+GlobalOptions& global_options() {
+  static GlobalOptions g;
+  return g;
+}
+
+void add_global_flags(CLI::App& app) {
+  GlobalOptions& g = global_options();
+  app.add_flag("-v,--verbose", g.verbose, "More messages on stderr (-vv for debug)");
+  app.add_flag("-q,--quiet", g.quiet, "Only errors on stderr, no progress");
+  app.add_flag("--json", g.json, "Print a machine-readable JSON summary on stdout");
+}
+
+void setup_logging_and_progress() {
+  const GlobalOptions& g = global_options();
+  auto sink = std::make_shared<spdlog::sinks::stderr_color_sink_mt>();
+  auto l = std::make_shared<spdlog::logger>("polycube", sink);
+  l->set_pattern("%^%l%$: %v");
+  if (g.quiet)
+    l->set_level(spdlog::level::err);
+  else if (g.verbose >= 2)
+    l->set_level(spdlog::level::debug);
+  else if (g.verbose == 1)
+    l->set_level(spdlog::level::info);
+  else
+    l->set_level(spdlog::level::warn);
+  core::set_logger(l);
+  if (!g.quiet && isatty(STDERR_FILENO)) core::set_progress_client(std::make_shared<TerminalProgress>());
+}
+
+void print_result(const nlohmann::json& json, const std::string& text) {
+  if (global_options().json)
+    std::cout << json.dump(2) << '\n';
+  else if (!text.empty())
+    std::cout << text << (text.back() == '\n' ? "" : "\n");
+}
+
+int run_guarded(const std::function<void()>& body) {
+  auto fail = [](int code, const std::string& what) {
+    std::cerr << "polycube: error: " << what << '\n';
+    return code;
+  };
+  try {
+    body();
+    return kOk;
+  } catch (const core::InputError& e) {
+    return fail(kBadInput, e.what());
+  } catch (const core::GeometryError& e) {
+    return fail(kNoResult, e.what());
+  } catch (const core::SolverError& e) {
+    return fail(kNoResult, e.what());
+  } catch (const core::Cancelled& e) {
+    return fail(kNoResult, e.what());
+  } catch (const std::bad_alloc&) {
+    return fail(kInternal, "out of memory");
+  } catch (const std::exception& e) {
+    return fail(kInternal, std::string("internal error: ") + e.what());
+  }
+}
+
+}  // namespace polycube::cli

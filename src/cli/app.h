@@ -1,0 +1,43 @@
+#pragma once
+//! \file app.h
+//! \brief Shared plumbing of the `polycube` subcommands: global flags, logging, progress,
+//! output, exit codes (ARCHITECTURE §4: 0 ok, 1 usage, 2 bad input, 3 no valid result,
+//! 4 internal error).
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <string>
+
+namespace polycube::cli {
+
+enum ExitCode : int { kOk = 0, kUsage = 1, kBadInput = 2, kNoResult = 3, kInternal = 4 };
+
+//! Flags every subcommand understands.
+struct GlobalOptions {
+  int verbose = 0;     //!< -v: info, -vv: debug
+  bool quiet = false;  //!< -q: errors only, no progress
+  bool json = false;   //!< --json: machine-readable summary on stdout
+};
+
+//! The options of the running process (set once by main).
+GlobalOptions& global_options();
+
+//! Add -v/-q/--json to a (sub)command.
+void add_global_flags(CLI::App& app);
+
+//! Install the stderr logger and, when stderr is a terminal and not quiet, the progress bar.
+void setup_logging_and_progress();
+
+//! Print a summary: `json` as JSON on stdout when --json was given, else `text` (unless empty).
+void print_result(const nlohmann::json& json, const std::string& text);
+
+//! Run the parsed application, mapping exceptions to exit codes and one-line messages.
+int run_guarded(const std::function<void()>& body);
+
+// --- subcommands: each file cli/cmd_<name>.cpp defines one register function ----------------
+void register_info(CLI::App& app);
+void register_convert(CLI::App& app);
+
+}  // namespace polycube::cli

@@ -1,0 +1,29 @@
+//! The `polycube` command: parse, set up logging, call one library entry point per subcommand.
+#include "cli/app.h"
+
+int main(int argc, char** argv) {
+  using namespace polycube::cli;
+  CLI::App app{
+      "polycube: polycube maps, coarse block layouts, hex and quad meshes, fabrication.\n"
+      "Run `polycube <subcommand> --help` for the options of each step."};
+  app.set_version_flag("--version", "polycube 0.1.0");
+  app.require_subcommand(1);
+  app.fallthrough();
+  add_global_flags(app);
+
+  // register_info(app);
+  // register_convert(app);
+
+  app.parse_complete_callback(setup_logging_and_progress);
+
+  // Subcommand callbacks run inside parse(); library exceptions map to exit codes there.
+  int usage = -1;
+  const int rc = run_guarded([&] {
+    try {
+      app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+      usage = app.exit(e) == 0 ? kOk : kUsage;  // --help and --version exit 0
+    }
+  });
+  return usage >= 0 ? usage : rc;
+}
