@@ -39,5 +39,13 @@ int run_guarded(const std::function<void()>& body);
 // --- subcommands: each file cli/cmd_<name>.cpp defines one register function ----------------
 void register_info(CLI::App& app);
 void register_convert(CLI::App& app);
+void register_sample(CLI::App& app);
+void register_label(CLI::App& app);
+void register_construct(CLI::App& app);
+void register_quality(CLI::App& app);
+void register_structure(CLI::App& app);
+void register_hexmesh(CLI::App& app);
+void register_quadmesh(CLI::App& app);
+void register_simplify(CLI::App& app);
 
 }  // namespace polycube::cli

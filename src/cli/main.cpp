@@ -11,8 +11,16 @@ int main(int argc, char** argv) {
   app.fallthrough();
   add_global_flags(app);
 
-  // register_info(app);
-  // register_convert(app);
+  register_info(app);
+  register_convert(app);
+  register_sample(app);
+  register_label(app);
+  register_construct(app);
+  register_quality(app);
+  register_structure(app);
+  register_hexmesh(app);
+  register_quadmesh(app);
+  register_simplify(app);
 
   app.parse_complete_callback(setup_logging_and_progress);
 

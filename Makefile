@@ -1,0 +1,37 @@
+# Two commands on a fresh Debian bookworm machine:
+#   make demo   install missing packages, build (Release), run the main job on a built-in sample
+#   make test   the same set-up, then the whole test suite through ctest
+# Both are idempotent and work offline once the packages are installed.
+
+BUILD  ?= build
+JOBS   ?= $(shell nproc)
+OUT    ?= out/demo
+CMAKE_FLAGS ?=
+
+.PHONY: all deps configure build demo test bench fuzz clean
+
+all: build
+
+deps:
+	@scripts/install-deps.sh
+
+configure: deps
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS) >/dev/null
+
+build: configure
+	@cmake --build $(BUILD) -j$(JOBS)
+
+demo: build
+	@scripts/demo.sh $(BUILD)/polycube $(OUT)
+
+test: build
+	@ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) --timeout 600
+
+bench: build
+	@bench/run.sh $(BUILD)
+
+fuzz: deps
+	@scripts/fuzz.sh
+
+clean:
+	@rm -rf $(BUILD) out

@@ -1,0 +1,129 @@
+//! Benchmark of polycube simplification (issue 7): pairing + alignment + finalization of the
+//! structure (the issue's goal: under 0.25 s per model, median of 3), and separately the tet
+//! fitting/untangling, with #D and #dom before/after. Models: polycubes built in code (the
+//! tests' comb and C-with-bump, and a staircase "city" of 8x8 towers with perturbed heights)
+//! and every map folder given on the command line (holding model.mesh and polycube.mesh, e.g.
+//! `polycube construct` outputs).
+//!
+//! usage: bench_simplify [--json] [--no-fit] [MAP_DIR...]
+#include "io/polycube_map_io.h"
+#include "simplify/simplify.h"
+#include "structure/structure.h"
+#include "simplify/polycube_fixtures.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace polycube;
+using Clock = std::chrono::steady_clock;
+constexpr int kRuns = 3;
+
+//! 8x8 towers over a base, integer heights 1..4 non-increasing in x and y (a staircase in two
+//! directions, so towers never touch along an edge only), each top perturbed by up to ±0.15.
+core::PolycubeMap city() {
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> h(1, 4);
+  std::uniform_real_distribution<double> jitter(-0.15, 0.15);
+  const int n = 8;
+  std::vector<double> gx, gy;
+  for (int i = 0; i <= n; ++i) {
+    gx.push_back(i + (i > 0 && i < n ? jitter(rng) * 0.5 : 0.0));
+    gy.push_back(i + (i > 0 && i < n ? jitter(rng) * 0.5 : 0.0));
+  }
+  std::vector<int> height(n * n);
+  for (auto& x : height) x = h(rng);
+  // z levels: base [0,1], then per tower its own perturbed top; the grid holds every level
+  std::vector<double> tops(n * n);
+  std::vector<double> gz{0.0, 1.0};
+  for (int k = 0; k < n * n; ++k) {
+    tops[k] = 1.0 + height[k] + jitter(rng);
+  }
+  for (int j = n - 1; j >= 0; --j)  // non-increasing tops in x and y
+    for (int i = n - 1; i >= 0; --i) {
+      if (i + 1 < n) tops[j * n + i] = std::max(tops[j * n + i], tops[j * n + i + 1]);
+      if (j + 1 < n) tops[j * n + i] = std::max(tops[j * n + i], tops[(j + 1) * n + i]);
+    }
+  gz.insert(gz.end(), tops.begin(), tops.end());
+  std::sort(gz.begin(), gz.end());
+  gz.erase(std::unique(gz.begin(), gz.end()), gz.end());
+  return test::grid_polycube(gx, gy, gz, [&](int i, int j, int k) {
+    return gz[k + 1] <= tops[j * n + i] + 1e-12;
+  });
+}
+
+struct Model {
+  std::string name;
+  core::PolycubeMap map;
+  double scale = 0.0;  // 0: automatic
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool json = false, fit = true;
+  std::vector<Model> models;
+  models.push_back({"comb", test::comb(0.1), 10.0});
+  models.push_back({"c-with-bump", test::c_with_bump(0.1), 10.0});
+  models.push_back({"city-8x8", city(), 0.0});
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--json") { json = true; continue; }
+    if (a == "--no-fit") { fit = false; continue; }
+    const std::filesystem::path dir(a);
+    try {
+      models.push_back({dir.filename().string(), io::read_polycube_map(dir / "model.mesh", dir / "polycube.mesh"), 0.0});
+    } catch (const std::exception& e) {
+      std::cerr << "skipping " << a << ": " << e.what() << "\n";
+    }
+  }
+  nlohmann::json out = nlohmann::json::array();
+  if (!json)
+    std::printf("%-14s %7s %8s %5s %7s %7s %6s %8s %8s %8s %6s %5s %9s %9s %5s\n", "model", "tets", "corners", "iters",
+                "planes0", "planes1", "#D0", "#D1", "#dom0", "#dom1", "gainD", "cert", "struct_s", "fit_s", "LPs");
+  for (const auto& m : models) {
+    const auto s = structure::extract_structure(m.map);
+    simplify::AlignOptions ao;
+    ao.scale = m.scale;
+    std::vector<double> times;
+    simplify::AlignResult r;
+    for (int k = 0; k < kRuns; ++k) {
+      const auto t0 = Clock::now();
+      r = simplify::align_corners(s, ao);
+      times.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+    }
+    std::sort(times.begin(), times.end());
+    const double median = times[kRuns / 2];
+    simplify::SimplifyOptions so;
+    so.align = ao;
+    so.fit_map = fit;
+    const auto full = simplify::simplify_map(m.map, so);
+    const int p0 = r.planes_before[0] + r.planes_before[1] + r.planes_before[2];
+    const int p1 = r.planes_after[0] + r.planes_after[1] + r.planes_after[2];
+    const double gain = full.before.hex_domains > 0 ? 100.0 * (full.before.hex_domains - full.after.hex_domains) / full.before.hex_domains : 0.0;
+    const double fit_s = full.fit.seconds_place + full.fit.seconds_untangle + full.fit.seconds_certify;
+    out.push_back({{"model", m.name}, {"tets", m.map.num_tets()}, {"corners", s.corners.size()},
+                   {"iterations", r.iterations.size()}, {"planes_before", r.planes_before},
+                   {"planes_after", r.planes_after}, {"hex_domains_before", full.before.hex_domains},
+                   {"hex_domains_after", full.after.hex_domains}, {"quad_domains_before", full.before.quad_domains},
+                   {"quad_domains_after", full.after.quad_domains}, {"certified", full.fit.certified},
+                   {"structure_seconds_median", median}, {"fit_seconds", fit_s}, {"lp_solves", r.lp_solves},
+                   {"scale", r.scale}});
+    if (!json)
+      std::printf("%-14s %7d %8zu %5zu %7d %7d %6d %8d %8d %8d %5.0f%% %5s %9.4f %9.3f %5d\n", m.name.c_str(),
+                  m.map.num_tets(), s.corners.size(), r.iterations.size(), p0, p1, full.before.hex_domains,
+                  full.after.hex_domains, full.before.quad_domains, full.after.quad_domains, gain,
+                  fit ? (full.fit.certified ? "yes" : "NO") : "-", median, fit_s, r.lp_solves);
+  }
+  if (json) std::cout << out.dump(2) << "\n";
+  return 0;
+}

@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Run every benchmark program of the build and print their tables.
+# Usage: bench/run.sh [build-dir]   (reads the models from ../shared/data)
+set -euo pipefail
+build=${1:-build}
+echo "machine: $(nproc) cores, $(awk '/MemTotal/ {printf "%.0f GiB", $2/1048576}' /proc/meminfo), $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
+echo "date: $(date -u +%Y-%m-%d)"
+for b in "$build"/bench/bench_*; do
+  [[ -x "$b" ]] || continue
+  echo
+  echo "== $(basename "$b")"
+  "$b"
+done

@@ -1,0 +1,164 @@
+//! `polycube construct INPUT -o DIR`: tetrahedralize (or take the input tet mesh), label and
+//! repair, deform, untangle and certify; write the certified map (model.mesh, polycube.mesh),
+//! labeling.txt and report.json (ARCHITECTURE §6.2).
+#include "cli/app.h"
+#include "construct/construct.h"
+#include "core/errors.h"
+#include "core/log.h"
+#include "io/mesh_io.h"
+#include "io/polycube_map_io.h"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <memory>
+
+namespace polycube::cli {
+
+namespace {
+
+struct ConstructCliOptions {
+  std::string input;
+  std::string output_dir;
+  construct::ConstructOptions construct;
+};
+
+construct::ConstructResult run_from_file(const ConstructCliOptions& o) {
+  const io::Format format = io::format_from_path(o.input);
+  core::MeshData data;
+  if (io::is_volume_format(format)) {
+    data = io::read_mesh(o.input);
+    if (!data.tets.empty()) {
+      core::TetMesh mesh = core::tets_of(data);
+      mesh.labels.clear();
+      try {
+        return construct::construct_polycube(std::move(mesh), o.construct);
+      } catch (const core::InputError& e) {
+        throw core::InputError(o.input, 0, e.what());
+      }
+    }
+    if (!data.hexes.empty())
+      throw core::InputError(o.input, 0, "hexahedral meshes are not accepted; give a surface or a tet mesh");
+  }
+  core::TriMesh surface;
+  if (io::is_volume_format(format)) {
+    surface = core::triangles_of(data);
+    surface.labels.clear();
+    if (surface.cells.empty()) throw core::InputError(o.input, 0, "the file holds no triangle and no tet");
+  } else {
+    surface = io::read_surface(o.input);
+  }
+  try {
+    return construct::construct_polycube(surface, o.construct);
+  } catch (const core::InputError& e) {
+    throw core::InputError(o.input, 0, e.what());
+  }
+}
+
+void run_construct(const ConstructCliOptions& o) {
+  namespace fs = std::filesystem;
+  const construct::ConstructResult r = run_from_file(o);  // throws unless certified
+
+  const fs::path dir(o.output_dir);
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw core::InputError(fmt::format("cannot create the output folder {}: {}", dir.string(), ec.message()));
+  io::write_polycube_map(dir / "model.mesh", dir / "polycube.mesh", r.map);
+  std::string text_labels;
+  text_labels.reserve(r.labels.size() * 2);
+  for (const int l : r.labels) {
+    text_labels += static_cast<char>('0' + l);
+    text_labels += '\n';
+  }
+  io::write_text_atomic(dir / "labeling.txt", text_labels);
+
+  const auto& s = r.seconds;
+  nlohmann::json j = {
+      {"input", o.input},
+      {"certified", r.certificate.certified()},
+      {"vertices", r.map.num_vertices()},
+      {"tets", r.map.num_tets()},
+      {"tetgen_tets", r.tetgen_tets},
+      {"refine", {{"split_edges", r.refine.split_edges}, {"split_tets", r.refine.split_tets}}},
+      {"split_boundary_triangles", r.split_triangles},
+      {"split_boundary_edges", r.split_edges},
+      {"boundary_triangles", r.boundary.size()},
+      {"charts", r.charts},
+      {"corners", r.corners},
+      {"boundaries", r.boundaries},
+      {"fidelity", r.fidelity},
+      {"repair_moves", r.repair_moves},
+      {"inverted_after_linear_step", r.inverted_after_linear},
+      {"untangle",
+       {{"iterations", r.untangle.iterations},
+        {"newton_steps", r.untangle.newton_steps},
+        {"inverted_before", r.untangle.inverted_before},
+        {"min_det", r.untangle.min_det},
+        {"energy", r.untangle.energy}}},
+      {"distortion",
+       {{"isometric_average", r.isometric_average},
+        {"isometric_max", r.isometric_max},
+        {"conformal_average", r.conformal_average},
+        {"conformal_max", r.conformal_max},
+        {"volume_normalized", true}}},
+      {"seconds",
+       {{"tetrahedralize", s.tetrahedralize},
+        {"label", s.label},
+        {"repair", s.repair},
+        {"deform", s.deform},
+        {"untangle", s.untangle},
+        {"certify", s.certify},
+        {"total", s.total}}},
+      {"outputs",
+       {{"model", (dir / "model.mesh").string()},
+        {"polycube", (dir / "polycube.mesh").string()},
+        {"labeling", (dir / "labeling.txt").string()},
+        {"report", (dir / "report.json").string()}}}};
+  io::write_text_atomic(dir / "report.json", j.dump(2) + "\n");
+
+  const std::string text = fmt::format(
+      "{}: certified polycube map, {} tets, {} charts, {} corners, fidelity {:.4f}\n"
+      "isometric distortion avg {:.3f} max {:.3f}\n"
+      "time: tetrahedralize {:.2f} s, label {:.2f} s, repair {:.2f} s, deform {:.2f} s, untangle {:.2f} s, "
+      "certify {:.2f} s, total {:.2f} s\n"
+      "wrote {}",
+      o.input, r.map.num_tets(), r.charts, r.corners, r.fidelity, r.isometric_average, r.isometric_max,
+      s.tetrahedralize, s.label, s.repair, s.deform, s.untangle, s.certify, s.total, dir.string());
+  print_result(j, text);
+}
+
+}  // namespace
+
+void register_construct(CLI::App& app) {
+  auto opts = std::make_shared<ConstructCliOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "construct",
+      "Build a certified polycube map: tetrahedralize, label, repair, deform, untangle, certify");
+  sub->add_option("input", opts->input, "Surface (.obj .off .stl .ply .mesh) or tet mesh (.mesh .vtk .msh)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->add_option("-o,--output", opts->output_dir,
+                  "Output folder (model.mesh, polycube.mesh, labeling.txt, report.json)")
+      ->required();
+  auto& c = opts->construct;
+  sub->add_option("--quality", c.tetrahedralize.quality, "TetGen radius-edge ratio bound (0: none)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--max-volume", c.tetrahedralize.max_volume,
+                  "Resolution: largest tet volume as a fraction of the bounding-box volume (0: no bound)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--compactness", c.labeling.compactness,
+                  "Compactness vs fidelity trade-off of the labeling (larger: fewer, smoother charts)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--iterations", c.deform.max_iterations, "Outer iterations of the untangling/optimization")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--volume-weight", c.deform.volume_weight, "Weight of the volume term of the elliptic energy")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  sub->callback([opts] { run_construct(*opts); });
+}
+
+}  // namespace polycube::cli

@@ -1,0 +1,125 @@
+//! `polycube info FILE`: counts, bounding box, closed/manifold/genus, components, and for volume
+//! meshes the element orientation summary.
+#include "cli/app.h"
+#include "core/topology.h"
+#include "io/mesh_io.h"
+
+#include <fmt/format.h>
+
+#include <memory>
+#include <sstream>
+
+namespace polycube::cli {
+
+namespace {
+
+struct InfoOptions {
+  std::string input;
+};
+
+nlohmann::json surface_json(const core::SurfaceReport& r) {
+  return {{"vertices", r.vertices},
+          {"faces", r.faces},
+          {"edges", r.edges},
+          {"components", r.components},
+          {"closed", r.closed},
+          {"manifold", r.manifold},
+          {"orientable", r.orientable},
+          {"consistently_oriented", r.consistently_oriented},
+          {"boundary_edges", r.boundary_edges},
+          {"boundary_loops", r.boundary_loops},
+          {"nonmanifold_edges", r.nonmanifold_edges},
+          {"nonmanifold_vertices", r.nonmanifold_vertices},
+          {"degenerate_faces", r.degenerate_faces},
+          {"isolated_vertices", r.isolated_vertices},
+          {"euler_characteristic", r.euler_characteristic},
+          {"genus", r.genus}};
+}
+
+std::string surface_text(const core::SurfaceReport& r, const char* indent) {
+  std::string genus = r.genus >= 0 ? std::to_string(r.genus) : std::string("undefined");
+  std::string s = fmt::format(
+      "{0}closed {1}, manifold {2}, orientable {3}, consistently oriented {4}\n"
+      "{0}components {5}, Euler characteristic {6}, genus {7}\n",
+      indent, r.closed ? "yes" : "no", r.manifold ? "yes" : "no", r.orientable ? "yes" : "no",
+      r.consistently_oriented ? "yes" : "no", r.components, r.euler_characteristic, genus);
+  if (!r.closed) s += fmt::format("{}boundary edges {} in {} loop(s)\n", indent, r.boundary_edges, r.boundary_loops);
+  if (r.nonmanifold_edges + r.nonmanifold_vertices > 0)
+    s += fmt::format("{}non-manifold edges {}, non-manifold vertices {}\n", indent, r.nonmanifold_edges,
+                     r.nonmanifold_vertices);
+  if (r.degenerate_faces > 0) s += fmt::format("{}degenerate faces {}\n", indent, r.degenerate_faces);
+  if (r.isolated_vertices > 0) s += fmt::format("{}isolated vertices {}\n", indent, r.isolated_vertices);
+  return s;
+}
+
+template <class Mesh>
+void add_volume(nlohmann::json& j, std::string& text, const char* key, const char* what, const Mesh& m) {
+  const core::VolumeReport r = core::analyze_volume(m);
+  j[key] = {{"cells", r.cells},
+            {"faces", r.faces},
+            {"boundary_faces", r.boundary_faces},
+            {"nonmanifold_faces", r.nonmanifold_faces},
+            {"components", r.components},
+            {"inverted_cells", r.inverted_cells},
+            {"euler_characteristic", r.euler_characteristic},
+            {"boundary", surface_json(r.boundary)}};
+  text += fmt::format("{}: {} components, {} inverted, {} boundary faces{}\n", what,
+                      r.components, r.inverted_cells, r.boundary_faces,
+                      r.nonmanifold_faces ? fmt::format(", {} NON-MANIFOLD faces", r.nonmanifold_faces) : "");
+  text += "  boundary surface:\n" + surface_text(r.boundary, "    ");
+  j["genus"] = r.boundary.genus;
+}
+
+void run_info(const InfoOptions& o) {
+  const core::MeshData d = io::read_mesh(o.input);
+  nlohmann::json j;
+  std::string text;
+  const core::BoundingBox bb = core::bounding_box(d.points);
+  j["file"] = o.input;
+  j["format"] = io::format_name(io::format_from_path(o.input));
+  j["vertices"] = d.points.size();
+  j["edges_block"] = d.edges.size();
+  j["triangles"] = d.triangles.size();
+  j["quads"] = d.quads.size();
+  j["tetrahedra"] = d.tets.size();
+  j["hexahedra"] = d.hexes.size();
+  j["bbox"] = {{"min", {bb.min.x(), bb.min.y(), bb.min.z()}},
+               {"max", {bb.max.x(), bb.max.y(), bb.max.z()}},
+               {"diagonal", bb.diagonal()}};
+  text += fmt::format("{} ({})\n", o.input, j["format"].get<std::string>());
+  text += fmt::format("vertices {}, triangles {}, quads {}, tetrahedra {}, hexahedra {}\n", d.points.size(),
+                      d.triangles.size(), d.quads.size(), d.tets.size(), d.hexes.size());
+  text += fmt::format("bounding box [{:.6g}, {:.6g}, {:.6g}] - [{:.6g}, {:.6g}, {:.6g}], diagonal {:.6g}\n",
+                      bb.min.x(), bb.min.y(), bb.min.z(), bb.max.x(), bb.max.y(), bb.max.z(), bb.diagonal());
+
+  // Volume elements take precedence: their boundary is the shape. Otherwise the surface blocks.
+  if (!d.hexes.empty()) add_volume(j, text, "hexahedra_report", "hex mesh", core::hexes_of(d));
+  if (!d.tets.empty()) add_volume(j, text, "tetrahedra_report", "tet mesh", core::tets_of(d));
+  if (d.tets.empty() && d.hexes.empty()) {
+    if (!d.triangles.empty()) {
+      const core::SurfaceReport r = core::analyze_surface(core::triangles_of(d));
+      j["surface"] = surface_json(r);
+      j["genus"] = r.genus;
+      text += "triangle surface:\n" + surface_text(r, "  ");
+    }
+    if (!d.quads.empty()) {
+      const core::SurfaceReport r = core::analyze_surface(core::quads_of(d));
+      j["quad_surface"] = surface_json(r);
+      if (d.triangles.empty()) j["genus"] = r.genus;
+      text += "quad surface:\n" + surface_text(r, "  ");
+    }
+  }
+  print_result(j, text);
+}
+
+}  // namespace
+
+void register_info(CLI::App& app) {
+  auto opts = std::make_shared<InfoOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "info", "Counts, bounding box, closed/manifold/orientable checks, genus and components of a mesh file");
+  sub->add_option("file", opts->input, "Mesh file (.obj .off .stl .ply .mesh .vtk .msh)")->required();
+  sub->callback([opts] { run_info(*opts); });
+}
+
+}  // namespace polycube::cli

@@ -1,0 +1,77 @@
+#pragma once
+//! \file construct.h
+//! \brief The whole polycube construction (ARCHITECTURE §6.2): tetrahedralize, label, repair
+//! the labeling, deform, untangle, certify. The result is a certified core::PolycubeMap or an
+//! exception with the reason; an uncertified map is never returned.
+
+#include "construct/certify.h"
+#include "construct/deform.h"
+#include "construct/labeling.h"
+#include "construct/labeling_repair.h"
+#include "construct/tetrahedralize.h"
+#include "core/polycube_map.h"
+#include "core/types.h"
+#include "solve/untangle.h"
+
+#include <vector>
+
+namespace polycube::construct {
+
+//! Options of construct_polycube().
+struct ConstructOptions {
+  TetrahedralizeOptions tetrahedralize;  //!< surface inputs only
+  LabelingOptions labeling;              //!< fidelity/compactness trade-off
+  RepairOptions repair;                  //!< its `energy` is replaced by `labeling`
+  DeformOptions deform;
+  CertifyOptions certify;
+};
+
+//! Wall time of each stage (seconds).
+struct ConstructTimes {
+  double tetrahedralize = 0;  //!< TetGen + boundary refinement (or input preparation)
+  double label = 0;           //!< graph-cut labeling
+  double repair = 0;          //!< labeling repair
+  double deform = 0;          //!< chart constraints + linear (ARAP) step
+  double untangle = 0;        //!< elliptic untangling and distortion reduction
+  double certify = 0;         //!< exact certification + distortion measures
+  double total = 0;
+};
+
+//! Result of construct_polycube(): a certified map and its figures.
+struct ConstructResult {
+  core::PolycubeMap map;            //!< certified
+  std::vector<core::Tri> boundary;  //!< #B boundary triangles in core::boundary() order (outward)
+  std::vector<int> labels;          //!< #B labels of `boundary`
+  Certificate certificate;          //!< certified() is true
+  int tetgen_tets = 0;              //!< tets made by TetGen (0 for tet-mesh inputs)
+  RefineStats refine;               //!< boundary refinement work
+  int split_triangles = 0;          //!< boundary triangles split by the deformation
+  int split_edges = 0;              //!< boundary edges split by the deformation
+  int charts = 0;                   //!< charts of the final labeling
+  int corners = 0;                  //!< polycube corners
+  int boundaries = 0;               //!< polycube edges (chart boundaries)
+  double fidelity = 0;              //!< area-weighted mean of 1 − n·axis (model normals)
+  int repair_moves = 0;             //!< moves made by the labeling repair
+  int inverted_after_linear = 0;    //!< tets inverted after the linear step (before untangling)
+  solve::UntangleResult untangle;   //!< elliptic optimization report
+  double isometric_average = 0;     //!< volume-weighted mean isometric distortion (volume-normalized)
+  double isometric_max = 0;         //!< max isometric distortion (volume-normalized)
+  double conformal_average = 0;
+  double conformal_max = 0;
+  ConstructTimes seconds;
+};
+
+//! Construct a certified polycube map of the volume bounded by a closed surface.
+//! \throw core::InputError when the surface is open, non-manifold, self-intersecting, ...
+//! \throw core::SolverError when no valid labeling is reached (names the remaining defects)
+//! \throw core::GeometryError when the map cannot be certified (with the certificate's reason)
+ConstructResult construct_polycube(const core::TriMesh& surface, const ConstructOptions& options = {});
+
+//! Same from a tet mesh (checked and oriented by prepare_tet_mesh, then refine_boundary).
+ConstructResult construct_polycube(core::TetMesh mesh, const ConstructOptions& options = {});
+
+//! Label, repair, deform and certify a prepared tet mesh (boundary refined, positively oriented).
+//! \throw as construct_polycube
+ConstructResult construct_from_prepared(const core::TetMesh& mesh, const ConstructOptions& options = {});
+
+}  // namespace polycube::construct

@@ -1,0 +1,456 @@
+//! Polycube deformation (see deform.h).
+#include "construct/deform.h"
+
+#include "core/errors.h"
+#include "core/log.h"
+#include "core/topology.h"
+#include "solve/sparse_solver.h"
+
+#include <Eigen/LU>
+#include <Eigen/SVD>
+#include <Eigen/SparseCore>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <map>
+#include <numeric>
+
+namespace polycube::construct {
+
+namespace {
+
+using core::Tri;
+using core::Vec3;
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+struct UnionFind {
+  std::vector<int> parent;
+  explicit UnionFind(int n) : parent(static_cast<std::size_t>(n)) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  }
+  void unite(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);  // smallest index is the root
+  }
+};
+
+std::array<int, 3> sorted(const Tri& t) {
+  std::array<int, 3> k{t[0], t[1], t[2]};
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+//! Boundary faces of the mesh (outward) with their owning tet/local face, and the labels of the
+//! caller's triangles transferred onto them.
+struct LabeledBoundary {
+  std::vector<Tri> tris;
+  std::vector<int> labels;
+  std::vector<int> cell;
+  std::vector<int> local;
+};
+
+LabeledBoundary match_boundary(const core::TetMesh& mesh, const std::vector<Tri>& given, const std::vector<int>& labels) {
+  const core::TetBoundary b = core::boundary(mesh);
+  const std::size_t nb = b.surface.cells.size();
+  if (given.size() != nb)
+    throw core::InputError(fmt::format("deform: {} labeled triangles given but the tet mesh has {} boundary faces",
+                                       given.size(), nb));
+  if (labels.size() != given.size())
+    throw core::InputError(fmt::format("deform: {} labels for {} boundary triangles", labels.size(), given.size()));
+  std::vector<std::pair<std::array<int, 3>, int>> keys(nb);
+  for (std::size_t i = 0; i < nb; ++i) {
+    if (labels[i] < 0 || labels[i] > 5)
+      throw core::InputError(fmt::format("deform: label {} of triangle {} is not in 0..5", labels[i], i));
+    keys[i] = {sorted(given[i]), labels[i]};
+  }
+  std::sort(keys.begin(), keys.end());
+  LabeledBoundary out;
+  out.tris.resize(nb);
+  out.labels.resize(nb);
+  out.cell = b.cell_of_face;
+  out.local = b.local_face;
+  for (std::size_t f = 0; f < nb; ++f) {
+    const Tri& s = b.surface.cells[f];
+    out.tris[f] = {b.vertex_map[s[0]], b.vertex_map[s[1]], b.vertex_map[s[2]]};
+    const auto k = sorted(out.tris[f]);
+    auto it = std::lower_bound(keys.begin(), keys.end(), std::make_pair(k, -1));
+    if (it == keys.end() || it->first != k)
+      throw core::InputError(fmt::format("deform: boundary face ({}, {}, {}) of the tet mesh has no label", k[0], k[1], k[2]));
+    out.labels[f] = it->second;
+  }
+  return out;
+}
+
+//! Charts and the chart coordinate variable of each (vertex, axis).
+struct ChartVars {
+  std::vector<int> tri_chart;  // #B
+  int num_charts = 0;
+  std::vector<int> vertex_group;  // 3#V: group id of (v, axis), -1 when v is on no chart of that axis
+  int num_groups = 0;
+};
+
+ChartVars chart_variables(int nv, const std::vector<Tri>& tris, const std::vector<int>& labels) {
+  ChartVars cv;
+  const int nb = static_cast<int>(tris.size());
+  // edge -> triangles, by sorting
+  std::vector<std::array<int, 3>> edges;  // (a, b, tri)
+  edges.reserve(3 * tris.size());
+  for (int t = 0; t < nb; ++t)
+    for (int e = 0; e < 3; ++e) {
+      const int a = tris[t][e], b = tris[t][(e + 1) % 3];
+      edges.push_back({std::min(a, b), std::max(a, b), t});
+    }
+  std::sort(edges.begin(), edges.end());
+  UnionFind uf(nb);
+  for (std::size_t i = 0; i + 1 < edges.size(); ++i)
+    if (edges[i][0] == edges[i + 1][0] && edges[i][1] == edges[i + 1][1] &&
+        labels[edges[i][2]] == labels[edges[i + 1][2]])
+      uf.unite(edges[i][2], edges[i + 1][2]);
+  cv.tri_chart.assign(static_cast<std::size_t>(nb), -1);
+  std::vector<int> root_id(static_cast<std::size_t>(nb), -1);
+  for (int t = 0; t < nb; ++t) {
+    const int r = uf.find(t);
+    if (root_id[r] < 0) root_id[r] = cv.num_charts++;
+    cv.tri_chart[t] = root_id[r];
+  }
+  std::vector<int> chart_axis(static_cast<std::size_t>(cv.num_charts));
+  for (int t = 0; t < nb; ++t) chart_axis[cv.tri_chart[t]] = labels[t] / 2;
+  // Charts of one axis sharing a vertex share their coordinate.
+  UnionFind cu(cv.num_charts);
+  std::vector<int> first(3 * static_cast<std::size_t>(nv), -1);
+  for (int t = 0; t < nb; ++t) {
+    const int c = cv.tri_chart[t];
+    const int a = chart_axis[c];
+    for (int v : tris[t]) {
+      int& f = first[3 * static_cast<std::size_t>(v) + a];
+      if (f < 0) f = c;
+      else cu.unite(f, c);
+    }
+  }
+  std::vector<int> group_of_root(static_cast<std::size_t>(cv.num_charts), -1);
+  for (int c = 0; c < cv.num_charts; ++c) {
+    const int r = cu.find(c);
+    if (group_of_root[r] < 0) group_of_root[r] = cv.num_groups++;
+  }
+  cv.vertex_group.assign(3 * static_cast<std::size_t>(nv), -1);
+  for (std::size_t i = 0; i < first.size(); ++i)
+    if (first[i] >= 0) cv.vertex_group[i] = group_of_root[cu.find(first[i])];
+  return cv;
+}
+
+//! Boundary triangles whose three vertices share the chart coordinate of an in-plane axis.
+std::vector<int> forced_flat_triangles(const std::vector<Tri>& tris, const std::vector<int>& labels,
+                                       const ChartVars& cv) {
+  std::vector<int> out;
+  for (std::size_t t = 0; t < tris.size(); ++t) {
+    const int a = labels[t] / 2;
+    for (int b = 0; b < 3; ++b) {
+      if (b == a) continue;
+      const int g0 = cv.vertex_group[3 * static_cast<std::size_t>(tris[t][0]) + b];
+      if (g0 >= 0 && g0 == cv.vertex_group[3 * static_cast<std::size_t>(tris[t][1]) + b] &&
+          g0 == cv.vertex_group[3 * static_cast<std::size_t>(tris[t][2]) + b]) {
+        out.push_back(static_cast<int>(t));
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+//! Chart-interior boundary edges (both triangles in one chart) whose endpoints share the chart
+//! coordinate of an in-plane axis: the constraints put the edge on a polycube edge line while
+//! the chart lies on both sides of it, which forces a fold.
+std::vector<std::array<int, 2>> chord_edges(const std::vector<Tri>& tris, const std::vector<int>& labels,
+                                            const ChartVars& cv) {
+  std::vector<std::array<int, 3>> edges;  // (a, b, tri)
+  edges.reserve(3 * tris.size());
+  for (std::size_t t = 0; t < tris.size(); ++t)
+    for (int e = 0; e < 3; ++e) {
+      const int a = tris[t][e], b = tris[t][(e + 1) % 3];
+      edges.push_back({std::min(a, b), std::max(a, b), static_cast<int>(t)});
+    }
+  std::sort(edges.begin(), edges.end());
+  std::vector<std::array<int, 2>> out;
+  for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
+    if (edges[i][0] != edges[i + 1][0] || edges[i][1] != edges[i + 1][1]) continue;
+    const int t0 = edges[i][2], t1 = edges[i + 1][2];
+    if (cv.tri_chart[t0] != cv.tri_chart[t1]) continue;
+    const int a = labels[t0] / 2;
+    const auto u = static_cast<std::size_t>(edges[i][0]), v = static_cast<std::size_t>(edges[i][1]);
+    for (int b = 0; b < 3; ++b) {
+      if (b == a) continue;
+      const int g = cv.vertex_group[3 * u + b];
+      if (g >= 0 && g == cv.vertex_group[3 * v + b]) {
+        out.push_back({edges[i][0], edges[i][1]});
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+//! Split the edges at their midpoints (every tet and boundary triangle around each edge in
+//! two). Edges whose tets were already modified in this call are left for the next round.
+//! Returns the number of edges split.
+int split_edges(core::TetMesh& mesh, LabeledBoundary& lb, const std::vector<std::array<int, 2>>& edges) {
+  const core::Adjacency vc = core::vertex_cells(mesh);
+  std::vector<char> touched(mesh.cells.size(), 0);
+  // boundary triangles by vertex
+  std::vector<std::vector<int>> vt(static_cast<std::size_t>(mesh.num_points()));
+  for (std::size_t t = 0; t < lb.tris.size(); ++t)
+    for (int v : lb.tris[t]) vt[v].push_back(static_cast<int>(t));
+  int count = 0;
+  for (const auto& e : edges) {
+    const int u = e[0], v = e[1];
+    std::vector<int> around;
+    for (int c : vc[u])
+      if (std::find(mesh.cells[c].begin(), mesh.cells[c].end(), v) != mesh.cells[c].end()) around.push_back(c);
+    bool busy = around.empty();
+    for (int c : around) busy = busy || touched[c];
+    if (busy) continue;
+    const int m = mesh.num_points();
+    mesh.points.push_back(0.5 * (mesh.points[u] + mesh.points[v]));
+    for (int c : around) {
+      // Replacing an edge end by a point inside the edge keeps the orientation.
+      core::Tet second = mesh.cells[c];
+      for (int& w : mesh.cells[c])
+        if (w == v) w = m;
+      for (int& w : second)
+        if (w == u) w = m;
+      mesh.cells.push_back(second);
+      if (!mesh.labels.empty()) mesh.labels.push_back(mesh.labels[c]);
+      touched[c] = 1;
+    }
+    touched.resize(mesh.cells.size(), 1);
+    for (int t : vt[u]) {
+      Tri& tri = lb.tris[t];
+      if (std::find(tri.begin(), tri.end(), v) == tri.end()) continue;
+      Tri second = tri;
+      for (int& w : tri)
+        if (w == v) w = m;
+      for (int& w : second)
+        if (w == u) w = m;
+      lb.tris.push_back(second);
+      lb.labels.push_back(lb.labels[t]);
+    }
+    ++count;
+  }
+  return count;
+}
+
+//! Split boundary triangle f (and its tet) at the triangle's centroid. Returns false when the
+//! tet was already modified in this round.
+bool split_boundary_triangle(core::TetMesh& mesh, LabeledBoundary& lb, int f, std::vector<char>& touched) {
+  const int t = lb.cell[f];
+  if (touched[t]) return false;
+  const Tri tri = lb.tris[f];
+  const int m = mesh.num_points();
+  mesh.points.push_back((mesh.points[tri[0]] + mesh.points[tri[1]] + mesh.points[tri[2]]) / 3.0);
+  const core::Tet old = mesh.cells[t];
+  // Replacing one face vertex by a point inside the face keeps the orientation.
+  bool first = true;
+  for (int k = 0; k < 3; ++k) {
+    core::Tet nt = old;
+    for (int& v : nt)
+      if (v == tri[k]) v = m;
+    if (first) {
+      mesh.cells[t] = nt;
+      first = false;
+    } else {
+      mesh.cells.push_back(nt);
+      if (!mesh.labels.empty()) mesh.labels.push_back(mesh.labels[t]);
+    }
+  }
+  touched.resize(mesh.cells.size(), 1);
+  touched[t] = 1;
+  const int label = lb.labels[f];
+  lb.tris[f] = {m, tri[1], tri[2]};
+  lb.tris.push_back({tri[0], m, tri[2]});
+  lb.tris.push_back({tri[0], tri[1], m});
+  lb.labels.push_back(label);
+  lb.labels.push_back(label);
+  return true;
+}
+
+//! Rotation closest to J (polar decomposition; det +1).
+Eigen::Matrix3d closest_rotation(const Eigen::Matrix3d& J) {
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(J, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d U = svd.matrixU();
+  const Eigen::Matrix3d V = svd.matrixV();
+  if ((U * V.transpose()).determinant() < 0) U.col(2) = -U.col(2);
+  return U * V.transpose();
+}
+
+}  // namespace
+
+DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tri>& boundary,
+                                const std::vector<int>& labels, const DeformOptions& o) {
+  const auto t_start = Clock::now();
+  DeformResult res;
+  res.mesh = input;
+  core::TetMesh& mesh = res.mesh;
+  core::check_indices(mesh);
+  LabeledBoundary lb = match_boundary(mesh, boundary, labels);
+
+  // 1–2. Charts, chart variables; split boundary triangles the constraints would flatten.
+  ChartVars cv;
+  for (int round = 0;; ++round) {
+    cv = chart_variables(mesh.num_points(), lb.tris, lb.labels);
+    const std::vector<std::array<int, 2>> chords = chord_edges(lb.tris, lb.labels, cv);
+    const std::vector<int> flat = chords.empty() ? forced_flat_triangles(lb.tris, lb.labels, cv) : std::vector<int>{};
+    if (chords.empty() && flat.empty()) break;
+    if (round >= 12)
+      throw core::GeometryError(fmt::format(
+          "deform: {} boundary edges and {} triangles stay forced onto polycube edges by the labeling after "
+          "splitting",
+          chords.size(), flat.size()));
+    if (!chords.empty()) {
+      res.split_edges += split_edges(mesh, lb, chords);
+    } else {
+      std::vector<char> touched(mesh.cells.size(), 0);
+      for (int f : flat) res.split_triangles += split_boundary_triangle(mesh, lb, f, touched) ? 1 : 0;
+    }
+    LabeledBoundary refreshed = match_boundary(mesh, lb.tris, lb.labels);  // refresh owners
+    lb = std::move(refreshed);
+  }
+  const int nv = mesh.num_points();
+  // Two distinct vertices tied to the same chart coordinates on all three axes would coincide.
+  {
+    const auto et = core::unique_edges(mesh);
+    for (const auto& e : et.edges) {
+      bool same = true;
+      for (int a = 0; a < 3 && same; ++a) {
+        const int g = cv.vertex_group[3 * static_cast<std::size_t>(e[0]) + a];
+        same = g >= 0 && g == cv.vertex_group[3 * static_cast<std::size_t>(e[1]) + a];
+      }
+      if (same)
+        throw core::GeometryError(fmt::format(
+            "deform: the labeling forces vertices {} and {} (an edge) onto one polycube point: both are corners of the "
+            "same three charts",
+            e[0], e[1]));
+    }
+  }
+  res.boundary = lb.tris;
+  res.labels = lb.labels;
+  res.triangle_chart = cv.tri_chart;
+  res.num_charts = cv.num_charts;
+  res.num_chart_variables = cv.num_groups;
+
+  // Reduction: chart coordinates first (one per group), then every free coordinate.
+  std::vector<int> var(3 * static_cast<std::size_t>(nv), -1);
+  int nvar = cv.num_groups;
+  for (std::size_t i = 0; i < var.size(); ++i) var[i] = cv.vertex_group[i] >= 0 ? cv.vertex_group[i] : nvar++;
+  const solve::LinearReduction R = solve::index_reduction(var, nvar, Eigen::VectorXd::Zero(3 * nv));
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(nvar);
+  {
+    std::vector<double> count(static_cast<std::size_t>(cv.num_groups), 0.0);
+    for (int v = 0; v < nv; ++v)
+      for (int d = 0; d < 3; ++d) {
+        const int j = var[3 * static_cast<std::size_t>(v) + d];
+        y[j] += mesh.points[v][d];
+        if (j < cv.num_groups) count[j] += 1.0;
+      }
+    for (int j = 0; j < cv.num_groups; ++j) y[j] /= count[j];
+  }
+  const solve::TetElements el = solve::reference_elements(mesh.points, mesh.cells);
+
+  // 3. As-rigid-as-possible least squares under the chart constraints: minimize
+  //    sum_t w_t |J_t - R_t|² with R_t the rotation closest to the current J_t.
+  if (o.arap_iterations > 0) {
+    std::vector<Eigen::Triplet<double>> trip;
+    trip.reserve(el.tets.size() * 16 * 3 / 2 + nvar);
+    for (int t = 0; t < el.size(); ++t) {
+      const Eigen::Matrix4d L = el.weights[t] * el.gradients[t] * el.gradients[t].transpose();
+      for (int d = 0; d < 3; ++d)
+        for (int i = 0; i < 4; ++i)
+          for (int j = 0; j < 4; ++j) {
+            const int vi = var[3 * static_cast<std::size_t>(el.tets[t][i]) + d];
+            const int vj = var[3 * static_cast<std::size_t>(el.tets[t][j]) + d];
+            if (vi <= vj) trip.emplace_back(vi, vj, L(i, j));
+          }
+    }
+    double trace = 0;
+    for (const auto& tr : trip)
+      if (tr.row() == tr.col()) trace += tr.value();
+    const double reg = 1e-8 * trace / nvar;  // removes the translations' null space
+    for (int j = 0; j < nvar; ++j) trip.emplace_back(j, j, reg);
+    Eigen::SparseMatrix<double> A(nvar, nvar);
+    A.setFromTriplets(trip.begin(), trip.end());
+    A.makeCompressed();
+    trip.clear();
+    solve::SparseSpdSolver solver;
+    if (!solver.factorize(A)) throw core::SolverError("deform: the least-squares system is not positive definite");
+    Eigen::VectorXd x = R.apply(y);
+    std::vector<Eigen::Matrix3d> rot(el.tets.size(), Eigen::Matrix3d::Identity());
+    for (int it = 0; it < o.arap_iterations; ++it) {
+      if (it > 0)
+        for (int t = 0; t < el.size(); ++t) {
+          Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+          for (int i = 0; i < 4; ++i) J += x.segment<3>(3 * el.tets[t][i]) * el.gradients[t].row(i);
+          rot[t] = closest_rotation(J);
+        }
+      Eigen::VectorXd rhs = reg * y;
+      for (int t = 0; t < el.size(); ++t) {
+        // d/dx of w |X^T G - R|²: rhs_(i,d) += w (G R^T)_(i,d)
+        const Eigen::Matrix<double, 4, 3> b = el.weights[t] * el.gradients[t] * rot[t].transpose();
+        for (int i = 0; i < 4; ++i)
+          for (int d = 0; d < 3; ++d) rhs[var[3 * static_cast<std::size_t>(el.tets[t][i]) + d]] += b(i, d);
+      }
+      y = solver.solve(rhs);
+      x = R.apply(y);
+    }
+  }
+  {
+    const Eigen::VectorXd x = R.apply(y);
+    for (int t = 0; t < el.size(); ++t) {
+      Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+      for (int i = 0; i < 4; ++i) J += x.segment<3>(3 * el.tets[t][i]) * el.gradients[t].row(i);
+      res.inverted_after_linear += J.determinant() <= 0;
+    }
+  }
+  res.seconds_linear = since(t_start);
+
+  // 4. Untangle, then lower the distortion, keeping the chart constraints exactly.
+  const auto t_unt = Clock::now();
+  solve::UntangleOptions uo;
+  uo.max_iterations = o.max_iterations;
+  uo.newton_steps = o.newton_steps;
+  uo.volume_weight = o.volume_weight;
+  uo.initial_epsilon = o.initial_epsilon;
+  uo.tolerance = o.tolerance;
+  uo.min_det_target = o.min_det;
+  res.untangle = solve::untangle(el, R, y, uo);
+  res.seconds_untangle = since(t_unt);
+
+  const Eigen::VectorXd x = R.apply(y);  // chart rows are exactly their variable
+  if (!res.untangle.untangled) {
+    int listed = 0;
+    for (int t = 0; t < el.size() && listed < 8; ++t) {
+      Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+      for (int i = 0; i < 4; ++i) J += x.segment<3>(3 * el.tets[t][i]) * el.gradients[t].row(i);
+      if (J.determinant() > o.min_det) continue;
+      ++listed;
+      std::string desc;
+      for (int v : el.tets[t])
+        desc += fmt::format(" v{}[{} {} {}]", v, cv.vertex_group[3 * v], cv.vertex_group[3 * v + 1],
+                            cv.vertex_group[3 * v + 2]);
+      core::logger().debug("deform: tet {} stays inverted (det {:.3g}):{}", t, J.determinant(), desc);
+    }
+  }
+  res.polycube.resize(static_cast<std::size_t>(nv));
+  for (int v = 0; v < nv; ++v)
+    for (int d = 0; d < 3; ++d) {
+      const int j = var[3 * static_cast<std::size_t>(v) + d];
+      res.polycube[v][d] = j < cv.num_groups ? y[j] : x[3 * v + d];
+    }
+  return res;
+}
+
+}  // namespace polycube::construct

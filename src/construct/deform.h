@@ -1,0 +1,74 @@
+#pragma once
+//! \file deform.h
+//! \brief Deformation of a labeled tet mesh into a polycube (ARCHITECTURE §6.2 steps 4–5):
+//! every chart planar at one shared coordinate along its axis, distortion as low as possible,
+//! no inverted tet.
+//!
+//! Steps:
+//! 1. charts = edge-connected boundary triangles with one label; the coordinate of each chart
+//!    along its label's axis is one unknown shared by all its vertices (charts of one axis that
+//!    touch at a vertex share it too). These are exact constraints (solve::LinearReduction).
+//! 2. boundary edges inside a chart whose two ends are tied to one chart coordinate of an
+//!    in-plane axis (a chord joining two points of one polycube edge: the chart would have to
+//!    fold over that edge) are split at their midpoint, and boundary triangles whose three
+//!    vertices are tied that way are split at their centroid (the tets around are split too;
+//!    this keeps the mesh conforming and positively oriented);
+//! 3. an as-rigid-as-possible least-squares solve (local rotations, one sparse factorization)
+//!    gives a first polycube;
+//! 4. the elliptic energy of Garanzha et al. 2021 (solve/untangle.h), with the model tets as
+//!    references, untangles it and then lowers the distortion while staying foldover-free.
+//! The polycube coordinate of a chart vertex along the chart's axis equals the chart's unknown
+//! bit for bit.
+
+#include "core/types.h"
+#include "solve/untangle.h"
+
+#include <vector>
+
+namespace polycube::construct {
+
+//! Options of deform_to_polycube().
+struct DeformOptions {
+  int arap_iterations = 15;        //!< local/global iterations of the first (linear) step
+  int max_iterations = 150;        //!< outer iterations of the elliptic optimization
+  int newton_steps = 2;            //!< Newton steps per outer iteration
+  double volume_weight = 1.0;      //!< λ of the elliptic energy (volume term)
+  //! Initial ε of the elliptic energy: small, since no coordinate is fixed (a large ε would
+  //! make a shrunken polycube cheap).
+  double initial_epsilon = 0.05;
+  double tolerance = 1e-4;         //!< relative energy decrease that stops the optimization
+  //! Minimum det J (relative to the model tet) that counts as untangled: a small positive
+  //! margin keeps the exact certification away from round-off.
+  double min_det = 1e-6;
+};
+
+//! Result of deform_to_polycube().
+struct DeformResult {
+  core::TetMesh mesh;                       //!< the model tet mesh (refined when triangles were split)
+  std::vector<core::Tri> boundary;          //!< #B outward boundary triangles (volume indices)
+  std::vector<int> labels;                  //!< #B labels in {0..5}
+  std::vector<core::Vec3> polycube;         //!< #V polycube positions
+  std::vector<int> triangle_chart;          //!< #B chart of each boundary triangle
+  int num_charts = 0;                       //!< charts (edge-connected, one label)
+  int num_chart_variables = 0;              //!< chart coordinates after merging touching charts
+  int split_triangles = 0;                  //!< boundary triangles split by step 2
+  int split_edges = 0;                      //!< boundary edges split by step 2
+  solve::UntangleResult untangle;           //!< the elliptic optimization's report
+  int inverted_after_linear = 0;            //!< tets inverted after the linear step
+  double seconds_linear = 0;                //!< time of steps 1–3
+  double seconds_untangle = 0;              //!< time of step 4
+};
+
+//! Deform a tet mesh with a labeled boundary into a polycube.
+//! \param mesh      positively oriented tet mesh (#V, #T)
+//! \param boundary  its boundary triangles (#B, volume vertex indices, any order and orientation)
+//! \param labels    #B labels in {0..5} = {+X, −X, +Y, −Y, +Z, −Z}
+//! \throw core::InputError when boundary is not exactly the set of boundary faces of mesh, or a
+//!        label is out of range
+//! \throw core::GeometryError when the labeling forces two distinct vertices onto one point
+//!        (names them); an untangling failure is NOT thrown: check result.untangle.untangled
+//!        (and certify the map, certify.h)
+DeformResult deform_to_polycube(const core::TetMesh& mesh, const std::vector<core::Tri>& boundary,
+                                const std::vector<int>& labels, const DeformOptions& options = {});
+
+}  // namespace polycube::construct

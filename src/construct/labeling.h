@@ -1,0 +1,58 @@
+#pragma once
+//! \file labeling.h
+//! \brief Polycube labeling of boundary triangles by multi-label graph cut (α-expansion)
+//! (ARCHITECTURE §6.2 step 2).
+//!
+//! A labeling is one value per boundary triangle in {0..5} = {+X, −X, +Y, −Y, +Z, −Z}
+//! (ARCHITECTURE §4): label l has axis l / 2 and sign + when l is even.
+
+#include "core/types.h"
+
+#include <vector>
+
+namespace polycube::construct {
+
+inline constexpr int kNumLabels = 6;
+
+//! Axis of a label (0 = X, 1 = Y, 2 = Z).
+constexpr int label_axis(int label) { return label / 2; }
+//! The label of the opposite direction (+X <-> −X, ...).
+constexpr int opposite_label(int label) { return label ^ 1; }
+//! Unit direction of a label.
+core::Vec3 label_direction(int label);
+//! "+X", "-X", "+Y", "-Y", "+Z", "-Z".
+const char* label_name(int label);
+
+//! Options of graph_cut_labeling().
+struct LabelingOptions {
+  //! Weight of the compactness (smoothness) term relative to the fidelity term: larger values
+  //! give fewer, more compact charts with straighter boundaries; 0 = the best axis per triangle.
+  double compactness = 1.0;
+  //! Width of the normal-similarity weight: a label change across an edge whose normals differ
+  //! by `1 - n1·n2 = sigma` costs e^-0.5 of a change across a flat edge (sharp edges are cheap).
+  double sigma = 0.25;
+  //! At most this many α-expansion cycles (one cycle = one expansion move per label).
+  int max_cycles = 8;
+};
+
+//! Result of graph_cut_labeling().
+struct LabelingResult {
+  std::vector<int> labels;  //!< #T labels in {0..5}
+  double energy = 0.0;      //!< final energy (fidelity + compactness terms, area-normalized)
+  int cycles = 0;           //!< α-expansion cycles run
+  int moves = 0;            //!< expansion moves that lowered the energy
+};
+
+//! Label the triangles of a closed, edge-manifold surface by α-expansion graph cut: data term
+//! `A_t/Ā · (1 − n_t·axis_l)`, Potts smoothness `compactness · |e|/ē · exp(−(1 − n_s·n_t)²/2σ²)`.
+//! Each move is a max-flow (solve::max_flow). Deterministic.
+//! \param surface  #V points, #T triangles with outward orientation
+//! \throw core::InputError when the surface is not a closed edge-manifold surface
+LabelingResult graph_cut_labeling(const core::TriMesh& surface, const LabelingOptions& options = {});
+
+//! Fidelity of a labeling: area-weighted mean of `1 − n·axis` (0 = every triangle exactly
+//! facing its axis; at most 2).
+//! \pre labels.size() == surface.cells.size(), each in {0..5}
+double labeling_fidelity(const core::TriMesh& surface, const std::vector<int>& labels);
+
+}  // namespace polycube::construct

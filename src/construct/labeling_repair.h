@@ -1,0 +1,49 @@
+#pragma once
+//! \file labeling_repair.h
+//! \brief Repair of a polycube labeling to validity by local operators (ARCHITECTURE §6.2 step 3).
+//!
+//! Each step takes one defect found by check_labeling() and tries local operators around it:
+//! re-labelling a small chart (merging it into a neighbour), re-labelling a strip along a
+//! boundary between opposite charts with a third axis, re-labelling the k-ring of a bad corner
+//! or the sectors of its charts, for growing rings. A move is kept only when it lowers the
+//! number of defects; among those, the one with the lowest labeling energy (fidelity +
+//! compactness, the terms of graph_cut_labeling()) wins. The repair never gives up silently:
+//! the result lists every remaining defect with its reason.
+
+#include "construct/labeling.h"
+#include "construct/labeling_check.h"
+#include "core/types.h"
+
+#include <vector>
+
+namespace polycube::construct {
+
+//! Options of repair_labeling().
+struct RepairOptions {
+  //! Energy used to rank the moves that lower the number of defects (same meaning as in
+  //! graph_cut_labeling()).
+  LabelingOptions energy;
+  //! Largest ring radius (in vertex rings) tried around a defect.
+  int max_ring = 6;
+  //! At most this many accepted moves.
+  int max_moves = 5000;
+};
+
+//! Result of repair_labeling().
+struct RepairResult {
+  std::vector<int> labels;  //!< #T repaired labels
+  LabelingCheck check;      //!< check of the repaired labels (defects with reasons)
+  int initial_defects = 0;  //!< defects before the repair
+  int moves = 0;            //!< accepted moves
+  [[nodiscard]] bool valid() const { return check.valid(); }
+};
+
+//! Repair a labeling towards validity.
+//! \param surface  closed, edge-manifold surface (#V, #T), outward orientation
+//! \param labels   #T initial labels in {0..5}
+//! \throw core::InputError on a wrong number of labels, a label out of range or a surface that
+//!        is not a closed edge-manifold surface
+RepairResult repair_labeling(const core::TriMesh& surface, const std::vector<int>& labels,
+                             const RepairOptions& options = {});
+
+}  // namespace polycube::construct

@@ -1,0 +1,318 @@
+#include "construct/tetrahedralize.h"
+
+#include "core/errors.h"
+#include "core/log.h"
+#include "core/topology.h"
+
+#define TETLIBRARY
+#include <tetgen.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <fmt/format.h>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace polycube::construct {
+
+namespace {
+
+using core::Tet;
+using core::TetMesh;
+using core::Vec3;
+using Edge = std::array<int, 2>;
+
+double signed_volume6(const TetMesh& m, const Tet& t) {
+  const Vec3& p0 = m.points[t[0]];
+  return (m.points[t[1]] - p0).dot((m.points[t[2]] - p0).cross(m.points[t[3]] - p0));
+}
+
+Edge sorted_edge(int a, int b) { return a < b ? Edge{a, b} : Edge{b, a}; }
+
+//! Boundary vertex flags and sorted boundary edges of a tet mesh.
+struct BoundaryInfo {
+  std::vector<char> is_boundary_vertex;
+  std::vector<Edge> boundary_edges;  // sorted, unique
+  std::vector<int> boundary_faces_of_cell;
+  [[nodiscard]] bool is_boundary_edge(int a, int b) const {
+    return std::binary_search(boundary_edges.begin(), boundary_edges.end(), sorted_edge(a, b));
+  }
+};
+
+BoundaryInfo boundary_info(const TetMesh& m) {
+  const auto ft = core::unique_faces(m);
+  BoundaryInfo info;
+  info.is_boundary_vertex.assign(m.points.size(), 0);
+  info.boundary_faces_of_cell.assign(m.cells.size(), 0);
+  for (int f = 0; f < ft.num_faces(); ++f) {
+    if (!ft.is_boundary(f)) continue;
+    const auto& face = ft.faces[f];
+    ++info.boundary_faces_of_cell[ft.face_cells[f][0]];
+    for (int k = 0; k < 3; ++k) {
+      info.is_boundary_vertex[face[k]] = 1;
+      info.boundary_edges.push_back(sorted_edge(face[k], face[(k + 1) % 3]));
+    }
+  }
+  std::sort(info.boundary_edges.begin(), info.boundary_edges.end());
+  info.boundary_edges.erase(std::unique(info.boundary_edges.begin(), info.boundary_edges.end()),
+                            info.boundary_edges.end());
+  return info;
+}
+
+//! Interior edges whose two endpoints are boundary vertices (sorted edge ids of et).
+std::vector<int> bad_edges(const BoundaryInfo& info, const core::EdgeTopology<core::CellType::Tetra>& et) {
+  std::vector<int> bad;
+  for (int e = 0; e < et.num_edges(); ++e) {
+    const auto& ab = et.edges[e];
+    if (info.is_boundary_vertex[ab[0]] && info.is_boundary_vertex[ab[1]] &&
+        !info.is_boundary_edge(ab[0], ab[1]))
+      bad.push_back(e);
+  }
+  return bad;
+}
+
+void push_cell(TetMesh& m, const Tet& t, int label) {
+  m.cells.push_back(t);
+  if (!m.labels.empty()) m.labels.push_back(label);
+}
+
+std::string tetgen_reason(int code) {
+  switch (code) {
+    case 1: return "out of memory";
+    case 2: return "internal error";
+    case 3: return "the surface self-intersects";
+    case 4: return "a very small input feature size was detected";
+    case 5: return "two very close input facets were detected";
+    case 10: return "input error";
+    default: return fmt::format("error code {}", code);
+  }
+}
+
+}  // namespace
+
+void check_closed_surface(const core::TriMesh& surface) {
+  if (surface.cells.empty()) throw core::InputError("the surface has no triangle");
+  const auto report = core::analyze_surface(surface);  // throws InputError on bad indices
+  if (report.degenerate_faces > 0)
+    throw core::InputError(fmt::format(
+        "the surface has {} degenerate triangle(s) (repeated vertex or zero area)",
+        report.degenerate_faces));
+  if (report.nonmanifold_edges > 0)
+    throw core::InputError(fmt::format(
+        "the surface is not manifold: {} edge(s) shared by three or more triangles",
+        report.nonmanifold_edges));
+  if (report.boundary_edges > 0)
+    throw core::InputError(fmt::format("the surface is open: {} boundary edge(s) in {} hole(s)",
+                                       report.boundary_edges, report.boundary_loops));
+  if (report.nonmanifold_vertices > 0)
+    throw core::InputError(fmt::format(
+        "the surface is not manifold: {} vertex(es) where separate sheets touch",
+        report.nonmanifold_vertices));
+  if (!report.orientable)
+    throw core::InputError("the surface is not orientable");
+
+  // Self-intersection, with exact predicates, on a consistently oriented copy.
+  using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
+  core::TriMesh oriented = surface;
+  if (!core::orient_consistently(oriented))
+    throw core::InputError("the surface is not orientable");
+  SurfaceMesh sm;
+  std::vector<SurfaceMesh::Vertex_index> vid;
+  vid.reserve(oriented.points.size());
+  for (const auto& p : oriented.points) vid.push_back(sm.add_vertex({p.x(), p.y(), p.z()}));
+  for (const auto& t : oriented.cells) {
+    if (sm.add_face(vid[t[0]], vid[t[1]], vid[t[2]]) == SurfaceMesh::null_face())
+      throw core::InputError("the surface is not manifold (a triangle cannot be attached)");
+  }
+  std::vector<std::pair<SurfaceMesh::Face_index, SurfaceMesh::Face_index>> pairs;
+  CGAL::Polygon_mesh_processing::self_intersections(sm, std::back_inserter(pairs));
+  if (!pairs.empty()) {
+    const auto f0 = static_cast<int>(pairs.front().first.idx());
+    const auto f1 = static_cast<int>(pairs.front().second.idx());
+    throw core::InputError(fmt::format(
+        "the surface self-intersects: {} pair(s) of intersecting triangles (first: {} and {})",
+        pairs.size(), std::min(f0, f1), std::max(f0, f1)));
+  }
+}
+
+TetrahedralizeResult tetrahedralize(const core::TriMesh& input, const TetrahedralizeOptions& options) {
+  core::TriMesh surface = input;
+  core::remove_unreferenced_points(surface);
+  check_closed_surface(surface);
+  auto& log = core::logger();
+
+  tetgenio in;
+  tetgenio out;
+  in.firstnumber = 0;
+  in.numberofpoints = surface.num_points();
+  in.pointlist = new REAL[static_cast<std::size_t>(in.numberofpoints) * 3];
+  for (int i = 0; i < in.numberofpoints; ++i)
+    for (int k = 0; k < 3; ++k) in.pointlist[3 * i + k] = surface.points[i][k];
+  in.numberoffacets = surface.num_cells();
+  in.facetlist = new tetgenio::facet[static_cast<std::size_t>(in.numberoffacets)];
+  for (int f = 0; f < in.numberoffacets; ++f) {
+    tetgenio::facet& fa = in.facetlist[f];
+    tetgenio::init(&fa);
+    fa.numberofpolygons = 1;
+    fa.polygonlist = new tetgenio::polygon[1];
+    tetgenio::init(&fa.polygonlist[0]);
+    fa.polygonlist[0].numberofvertices = 3;
+    fa.polygonlist[0].vertexlist = new int[3];
+    for (int k = 0; k < 3; ++k) fa.polygonlist[0].vertexlist[k] = surface.cells[f][k];
+  }
+
+  // p: piecewise linear complex, Y: no Steiner point on the surface, Q: quiet, z: 0-based.
+  std::string switches = "pYQz";
+  if (options.quality > 0.0) switches += fmt::format("q{:.4f}", std::max(1.1, options.quality));
+  if (options.max_volume > 0.0) {
+    const auto box = core::bounding_box(surface.points);
+    const Vec3 ext = box.extent();
+    const double vol = options.max_volume * ext.x() * ext.y() * ext.z();
+    if (vol > 0.0) switches += fmt::format("a{:.10g}", vol);
+  }
+  log.info("tetrahedralize: TetGen -{} on {} points, {} triangles", switches, in.numberofpoints,
+           in.numberoffacets);
+  try {
+    std::vector<char> sw(switches.begin(), switches.end());
+    sw.push_back('\0');
+    ::tetrahedralize(sw.data(), &in, &out);
+  } catch (int code) {
+    if (code == 3) throw core::InputError("TetGen: " + tetgen_reason(code));
+    throw core::GeometryError("TetGen failed: " + tetgen_reason(code));
+  }
+  if (out.numberoftetrahedra <= 0 || out.numberofcorners < 4)
+    throw core::GeometryError("TetGen made no tetrahedron (is the surface enclosing a volume?)");
+
+  TetrahedralizeResult result;
+  TetMesh& mesh = result.mesh;
+  mesh.points.resize(static_cast<std::size_t>(out.numberofpoints));
+  for (int i = 0; i < out.numberofpoints; ++i)
+    mesh.points[i] = Vec3(out.pointlist[3 * i], out.pointlist[3 * i + 1], out.pointlist[3 * i + 2]);
+  mesh.cells.resize(static_cast<std::size_t>(out.numberoftetrahedra));
+  for (int c = 0; c < out.numberoftetrahedra; ++c)
+    for (int k = 0; k < 4; ++k)
+      mesh.cells[c][k] = out.tetrahedronlist[static_cast<std::size_t>(c) * out.numberofcorners + k];
+  core::remove_unreferenced_points(mesh);
+  for (auto& t : mesh.cells)
+    if (signed_volume6(mesh, t) < 0.0) std::swap(t[2], t[3]);
+  result.tetgen_tets = mesh.num_cells();
+
+  // TetGen must have kept the surface: same number of boundary triangles.
+  const auto bnd = core::boundary(mesh);
+  if (bnd.surface.num_cells() != surface.num_cells())
+    throw core::GeometryError(fmt::format(
+        "TetGen changed the surface ({} boundary triangles instead of {})",
+        bnd.surface.num_cells(), surface.num_cells()));
+  if (options.refine) result.refine = refine_boundary(mesh);
+  log.info("tetrahedralize: {} tets from TetGen, {} after refinement ({} edge splits, {} tet splits)",
+           result.tetgen_tets, mesh.num_cells(), result.refine.split_edges, result.refine.split_tets);
+  return result;
+}
+
+void prepare_tet_mesh(TetMesh& mesh) {
+  if (mesh.cells.empty()) throw core::InputError("the tet mesh has no tetrahedron");
+  core::check_indices(mesh);
+  core::remove_unreferenced_points(mesh);
+  int positive = 0, negative = 0, flat = 0;
+  const double scale = core::bounding_box(mesh.points).diagonal();
+  const double eps = 1e-14 * scale * scale * scale;
+  for (const auto& t : mesh.cells) {
+    const double v = signed_volume6(mesh, t);
+    if (std::abs(v) <= eps) ++flat;
+    else if (v > 0) ++positive;
+    else ++negative;
+  }
+  if (flat > 0) throw core::InputError(fmt::format("the tet mesh has {} flat tetrahedra", flat));
+  if (positive > 0 && negative > 0)
+    throw core::InputError(fmt::format(
+        "the tet mesh mixes orientations: {} positive and {} inverted tetrahedra", positive, negative));
+  if (negative > 0)
+    for (auto& t : mesh.cells) std::swap(t[2], t[3]);
+  core::TetBoundary bnd;
+  try {
+    bnd = core::boundary(mesh);
+  } catch (const core::GeometryError& e) {
+    throw core::InputError(std::string("the tet mesh is not manifold: ") + e.what());
+  }
+  const auto report = core::analyze_surface(bnd.surface);
+  if (!report.closed || !report.manifold)
+    throw core::InputError(fmt::format(
+        "the boundary of the tet mesh is not a closed manifold surface ({} boundary edges, {} "
+        "non-manifold edges, {} non-manifold vertices)",
+        report.boundary_edges, report.nonmanifold_edges, report.nonmanifold_vertices));
+}
+
+RefineStats refine_boundary(TetMesh& mesh) {
+  RefineStats stats;
+  // 1. Split interior edges joining two boundary vertices, in rounds of edges sharing no tet.
+  for (;;) {
+    const BoundaryInfo info = boundary_info(mesh);
+    const auto et = core::unique_edges(mesh);
+    const std::vector<int> bad = bad_edges(info, et);
+    if (bad.empty()) break;
+    const auto ec = core::edge_cells(et);
+    std::vector<char> used(mesh.cells.size(), 0);
+    for (const int e : bad) {
+      const auto cells = ec[e];
+      if (std::any_of(cells.begin(), cells.end(), [&](int c) { return used[c] != 0; })) continue;
+      const int a = et.edges[e][0];
+      const int b = et.edges[e][1];
+      const int m = mesh.num_points();
+      mesh.points.push_back(0.5 * (mesh.points[a] + mesh.points[b]));
+      for (const int c : cells) {
+        used[c] = 1;
+        const Tet t = mesh.cells[c];
+        Tet t1 = t;
+        Tet t2 = t;
+        for (int k = 0; k < 4; ++k) {
+          if (t[k] == b) t1[k] = m;
+          if (t[k] == a) t2[k] = m;
+        }
+        mesh.cells[c] = t1;
+        push_cell(mesh, t2, mesh.labels.empty() ? 0 : mesh.labels[c]);
+      }
+      ++stats.split_edges;
+    }
+  }
+  // 2. Split tets with several boundary facets at their centroid (after step 1, all their edges
+  // are boundary edges, so the four new tets each hold one of the old faces).
+  const BoundaryInfo info = boundary_info(mesh);
+  const int n = mesh.num_cells();
+  for (int c = 0; c < n; ++c) {
+    if (info.boundary_faces_of_cell[c] < 2) continue;
+    const Tet t = mesh.cells[c];
+    const int m = mesh.num_points();
+    mesh.points.push_back(0.25 * (mesh.points[t[0]] + mesh.points[t[1]] + mesh.points[t[2]] +
+                                  mesh.points[t[3]]));
+    const int label = mesh.labels.empty() ? 0 : mesh.labels[c];
+    // Replacing one vertex by an interior point keeps the orientation.
+    for (int k = 0; k < 4; ++k) {
+      Tet tk = t;
+      tk[k] = m;
+      if (k == 0) mesh.cells[c] = tk;
+      else push_cell(mesh, tk, label);
+    }
+    ++stats.split_tets;
+  }
+  return stats;
+}
+
+BoundaryDefects boundary_defects(const TetMesh& mesh) {
+  const BoundaryInfo info = boundary_info(mesh);
+  const auto et = core::unique_edges(mesh);
+  BoundaryDefects d;
+  d.interior_edges_between_boundary_vertices = static_cast<int>(bad_edges(info, et).size());
+  for (const int k : info.boundary_faces_of_cell)
+    if (k >= 2) ++d.tets_with_several_boundary_facets;
+  return d;
+}
+
+}  // namespace polycube::construct

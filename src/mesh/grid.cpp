@@ -1,0 +1,678 @@
+#include "mesh/grid.h"
+
+#include "core/elements.h"
+#include "core/errors.h"
+#include "core/log.h"
+#include "core/progress.h"
+#include "core/topology.h"
+#include "mesh/tet_locator.h"
+#include "structure/structure.h"
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
+#include <numeric>
+
+namespace polycube::mesh {
+
+namespace {
+
+using core::Vec3;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+constexpr const char* kAxis[3] = {"x", "y", "z"};
+
+std::string fmt_point(const Vec3& p) { return fmt::format("({:.6g}, {:.6g}, {:.6g})", p.x(), p.y(), p.z()); }
+
+// --- levels and the arrangement of the polycube -----------------------------------------------
+
+//! The polycube seen as a union of boxes of the grid of its chart planes ("levels").
+struct Arrangement {
+  std::array<std::vector<double>, 3> level;  //!< distinct chart coordinates per axis, increasing
+  std::vector<int> chart_level;              //!< level index of each chart (along its axis)
+  std::vector<char> inside;                  //!< per box (i fastest, then j, then k)
+  double tolerance = 0.0;                    //!< absolute level tolerance (polycube units)
+
+  [[nodiscard]] int boxes(int a) const { return static_cast<int>(level[a].size()) - 1; }
+  [[nodiscard]] std::size_t box_index(int i, int j, int k) const {
+    return (static_cast<std::size_t>(k) * boxes(1) + j) * boxes(0) + i;
+  }
+  [[nodiscard]] bool is_inside(int i, int j, int k) const {
+    if (i < 0 || j < 0 || k < 0 || i >= boxes(0) || j >= boxes(1) || k >= boxes(2)) return false;
+    return inside[box_index(i, j, k)] != 0;
+  }
+  //! Index of the level nearest to x along axis a.
+  [[nodiscard]] int nearest_level(int a, double x) const {
+    const auto& l = level[a];
+    auto it = std::lower_bound(l.begin(), l.end(), x);
+    if (it == l.end()) return static_cast<int>(l.size()) - 1;
+    if (it == l.begin()) return 0;
+    return (x - *(it - 1) <= *it - x) ? static_cast<int>(it - l.begin()) - 1 : static_cast<int>(it - l.begin());
+  }
+};
+
+Arrangement build_arrangement(const structure::PolycubeStructure& s, const TetLocator& locator, double tol,
+                              long long max_boxes) {
+  Arrangement arr;
+  arr.tolerance = tol;
+  arr.chart_level.assign(s.charts.size(), -1);
+  for (int a = 0; a < 3; ++a) {
+    // cluster the chart coordinates of this axis: a gap larger than tol starts a new level
+    std::vector<std::pair<double, int>> coords;
+    for (std::size_t c = 0; c < s.charts.size(); ++c)
+      if (s.charts[c].axis == a) coords.emplace_back(s.charts[c].coordinate, static_cast<int>(c));
+    std::sort(coords.begin(), coords.end());
+    for (std::size_t i = 0; i < coords.size();) {
+      std::size_t j = i + 1;
+      while (j < coords.size() && coords[j].first - coords[j - 1].first <= tol) ++j;
+      double sum = 0.0;
+      for (std::size_t k = i; k < j; ++k) {
+        sum += coords[k].first;
+        arr.chart_level[static_cast<std::size_t>(coords[k].second)] = static_cast<int>(arr.level[a].size());
+      }
+      arr.level[a].push_back(sum / static_cast<double>(j - i));
+      i = j;
+    }
+    if (arr.level[a].size() < 2)
+      throw core::InputError(fmt::format("the polycube has {} chart plane(s) along {}: not a closed polycube",
+                                         arr.level[a].size(), kAxis[a]));
+  }
+  const long long nbox = static_cast<long long>(arr.boxes(0)) * arr.boxes(1) * arr.boxes(2);
+  if (nbox > max_boxes)
+    throw core::InputError(fmt::format("the polycube has {} x {} x {} distinct chart planes: too many to grid",
+                                       arr.level[0].size(), arr.level[1].size(), arr.level[2].size()));
+  // a box of the arrangement is inside when its centre is (no chart crosses a box)
+  arr.inside.assign(static_cast<std::size_t>(nbox), 0);
+  for (int k = 0; k < arr.boxes(2); ++k)
+    for (int j = 0; j < arr.boxes(1); ++j)
+      for (int i = 0; i < arr.boxes(0); ++i) {
+        const Vec3 c(0.5 * (arr.level[0][i] + arr.level[0][i + 1]), 0.5 * (arr.level[1][j] + arr.level[1][j + 1]),
+                     0.5 * (arr.level[2][k] + arr.level[2][k + 1]));
+        arr.inside[arr.box_index(i, j, k)] = locator.locate(c).tet >= 0 ? 1 : 0;
+      }
+  return arr;
+}
+
+//! Rounded levels at scale s: nearest integer, halves away from zero.
+std::array<std::vector<long long>, 3> snapped_levels(const Arrangement& arr, double s) {
+  std::array<std::vector<long long>, 3> out;
+  for (int a = 0; a < 3; ++a)
+    for (double l : arr.level[a]) {
+      const double x = std::round(l * s);
+      if (!(std::abs(x) < 1e9))
+        throw core::InputError(fmt::format("scale {:.6g} puts the polycube outside the integer lattice's range", s));
+      out[a].push_back(static_cast<long long>(x));
+    }
+  return out;
+}
+
+//! Hex and boundary quad counts of the snapped lattice (as doubles: used to choose the scale).
+std::array<double, 2> counts_at(const Arrangement& arr, double s) {
+  const auto sn = snapped_levels(arr, s);
+  std::array<std::vector<double>, 3> len;
+  for (int a = 0; a < 3; ++a)
+    for (std::size_t i = 0; i + 1 < sn[a].size(); ++i) len[a].push_back(static_cast<double>(sn[a][i + 1] - sn[a][i]));
+  double hexes = 0.0;
+  double quads = 0.0;
+  for (int k = -1; k < arr.boxes(2); ++k)
+    for (int j = -1; j < arr.boxes(1); ++j)
+      for (int i = -1; i < arr.boxes(0); ++i) {
+        const bool in = arr.is_inside(i, j, k);
+        if (in) hexes += len[0][i] * len[1][j] * len[2][k];
+        // faces between this box and its +x, +y, +z neighbours
+        if (j >= 0 && k >= 0 && in != arr.is_inside(i + 1, j, k)) quads += len[1][j] * len[2][k];
+        if (i >= 0 && k >= 0 && in != arr.is_inside(i, j + 1, k)) quads += len[0][i] * len[2][k];
+        if (i >= 0 && j >= 0 && in != arr.is_inside(i, j, k + 1)) quads += len[0][i] * len[1][j];
+      }
+  return {hexes, quads};
+}
+
+//! Scale whose count (0: hexes, 1: quads) is closest to target.
+double choose_scale(const Arrangement& arr, int which, double target) {
+  double measure = 0.0;  // volume or area at scale 1 without rounding
+  for (int k = -1; k < arr.boxes(2); ++k)
+    for (int j = -1; j < arr.boxes(1); ++j)
+      for (int i = -1; i < arr.boxes(0); ++i) {
+        auto len = [&](int a, int x) { return arr.level[a][x + 1] - arr.level[a][x]; };
+        const bool in = arr.is_inside(i, j, k);
+        if (which == 0) {
+          if (in) measure += len(0, i) * len(1, j) * len(2, k);
+        } else {
+          if (j >= 0 && k >= 0 && in != arr.is_inside(i + 1, j, k)) measure += len(1, j) * len(2, k);
+          if (i >= 0 && k >= 0 && in != arr.is_inside(i, j + 1, k)) measure += len(0, i) * len(2, k);
+          if (i >= 0 && j >= 0 && in != arr.is_inside(i, j, k + 1)) measure += len(0, i) * len(1, j);
+        }
+      }
+  if (!(measure > 0.0)) throw core::GeometryError("the polycube has no volume");
+  const double s0 = which == 0 ? std::cbrt(target / measure) : std::sqrt(target / measure);
+  // bisection for the smallest scale reaching the target, then the closer of the two sides
+  double lo = s0 / 4.0;
+  double hi = s0 * 4.0;
+  auto count = [&](double s) { return counts_at(arr, s)[which]; };
+  while (count(lo) >= target && lo > 1e-12) lo /= 2.0;
+  while (count(hi) < target && hi < 1e12) hi *= 2.0;
+  for (int it = 0; it < 60; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (count(mid) >= target ? hi : lo) = mid;
+  }
+  const double clo = count(lo);
+  const double chi = count(hi);
+  return (std::abs(clo - target) < std::abs(chi - target) && clo > 0) ? lo : hi;
+}
+
+// --- snapping defects (thesis fig. 3.2) -------------------------------------------------------
+
+struct SnapContext {
+  const structure::PolycubeStructure& s;
+  const Arrangement& arr;
+  const std::array<std::vector<long long>, 3>& sn;
+  double scale;
+};
+
+//! Snapped (lattice) position of a polycube point: each coordinate on a level goes to the
+//! level's integer, any other coordinate is rounded.
+Vec3 snap_point(const SnapContext& c, const Vec3& p) {
+  Vec3 q;
+  for (int a = 0; a < 3; ++a) {
+    const int l = c.arr.nearest_level(a, p[a]);
+    q[a] = std::abs(p[a] - c.arr.level[a][l]) <= c.arr.tolerance ? static_cast<double>(c.sn[a][l])
+                                                                  : std::round(p[a] * c.scale);
+  }
+  return q;
+}
+
+//! Is the 2D point (x, y) inside or on the border of the polygon with holes (loops of 2D points)?
+bool in_polygon(const std::vector<std::vector<std::array<double, 2>>>& loops, double x, double y) {
+  bool odd = false;
+  for (const auto& l : loops) {
+    const std::size_t n = l.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto& p = l[i];
+      const auto& q = l[(i + 1) % n];
+      // on the segment (integer coordinates: exact)
+      const double cross = (q[0] - p[0]) * (y - p[1]) - (q[1] - p[1]) * (x - p[0]);
+      if (cross == 0.0 && x >= std::min(p[0], q[0]) && x <= std::max(p[0], q[0]) && y >= std::min(p[1], q[1]) &&
+          y <= std::max(p[1], q[1]))
+        return true;
+      if ((p[1] > y) != (q[1] > y)) {
+        const double xi = p[0] + (y - p[1]) * (q[0] - p[0]) / (q[1] - p[1]);
+        if (x < xi) odd = !odd;
+      }
+    }
+  }
+  return odd;
+}
+
+std::vector<SnapDefect> detect_defects(const SnapContext& c) {
+  const auto& s = c.s;
+  std::vector<SnapDefect> out;
+  std::vector<Vec3> snapped(s.corners.size());
+  for (std::size_t i = 0; i < s.corners.size(); ++i) snapped[i] = snap_point(c, s.corners[i].position);
+  auto scaled = [&](int corner) -> Vec3 { return s.corners[static_cast<std::size_t>(corner)].position * c.scale; };
+
+  // 1. corners merged into one lattice point
+  std::vector<int> order(s.corners.size());
+  std::iota(order.begin(), order.end(), 0);
+  auto key = [&](int i) { return std::array<double, 3>{snapped[i].x(), snapped[i].y(), snapped[i].z()}; };
+  std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return key(x) < key(y); });
+  for (std::size_t i = 0; i < order.size();) {
+    std::size_t j = i + 1;
+    while (j < order.size() && key(order[j]) == key(order[i])) ++j;
+    if (j - i > 1) {
+      SnapDefect d;
+      d.kind = DefectKind::CornersMerged;
+      d.lattice = snapped[order[i]];
+      std::string names;
+      for (std::size_t k = i; k < j; ++k) {
+        d.corners.push_back(order[k]);
+        std::sort(d.corners.begin(), d.corners.end());
+      }
+      for (int cid : d.corners) {
+        d.positions.push_back(scaled(cid));
+        names += (names.empty() ? "" : ", ") + fmt::format("{} {}", cid, fmt_point(scaled(cid)));
+      }
+      d.description = fmt::format("corners {} merge at lattice point {}", names, fmt_point(d.lattice));
+      out.push_back(std::move(d));
+    }
+    i = j;
+  }
+  // 2. polycube edges collapsed to zero length
+  for (std::size_t e = 0; e < s.edges.size(); ++e) {
+    const auto& pe = s.edges[e];
+    if (pe.corners[0] < 0 || pe.corners[1] < 0) continue;
+    if (snapped[pe.corners[0]] != snapped[pe.corners[1]]) continue;
+    SnapDefect d;
+    d.kind = DefectKind::EdgeCollapsed;
+    d.edge = static_cast<int>(e);
+    d.corners = {pe.corners[0], pe.corners[1]};
+    d.positions = {scaled(pe.corners[0]), scaled(pe.corners[1])};
+    d.lattice = snapped[pe.corners[0]];
+    d.description = fmt::format("edge {} (corners {}-{}, along {}, length {:.6g}) collapses to zero length", e,
+                                pe.corners[0], pe.corners[1], pe.axis >= 0 ? kAxis[pe.axis] : "?", pe.length * c.scale);
+    out.push_back(std::move(d));
+  }
+  // 3. charts collapsed to zero area, and 4. corners pushed onto charts they do not belong to
+  std::vector<std::vector<std::vector<std::array<double, 2>>>> polys(s.charts.size());
+  for (std::size_t ci = 0; ci < s.charts.size(); ++ci) {
+    const auto& ch = s.charts[ci];
+    const int u = (ch.axis + 1) % 3;
+    const int v = (ch.axis + 2) % 3;
+    double area = 0.0;
+    bool usable = true;
+    for (const auto& loop : s.faces[ci].loops) {
+      if (loop.corners.size() < 3) {
+        usable = false;
+        break;
+      }
+      std::vector<std::array<double, 2>> pts;
+      for (int cid : loop.corners) pts.push_back({snapped[cid][u], snapped[cid][v]});
+      for (std::size_t i = 0; i < pts.size(); ++i) {
+        const auto& p = pts[i];
+        const auto& q = pts[(i + 1) % pts.size()];
+        area += p[0] * q[1] - p[1] * q[0];
+      }
+      polys[ci].push_back(std::move(pts));
+    }
+    if (!usable) {
+      polys[ci].clear();
+      continue;
+    }
+    if (area == 0.0 && ch.area > 0.0) {
+      SnapDefect d;
+      d.kind = DefectKind::ChartCollapsed;
+      d.chart = static_cast<int>(ci);
+      for (int cid : s.faces[ci].loops[0].corners) {
+        d.corners.push_back(cid);
+        d.positions.push_back(scaled(cid));
+      }
+      d.lattice = snapped[s.faces[ci].loops[0].corners[0]];
+      d.description = fmt::format("chart {} ({} at {} = {:.6g}, area {:.6g}) collapses to zero area", ci,
+                                  core::label_name(ch.label), kAxis[ch.axis], ch.coordinate * c.scale,
+                                  ch.area * c.scale * c.scale);
+      out.push_back(std::move(d));
+    }
+  }
+  // charts by (axis, snapped level) for the corner-on-facet test
+  std::map<std::pair<int, long long>, std::vector<int>> by_plane;
+  for (std::size_t ci = 0; ci < s.charts.size(); ++ci) {
+    const int l = c.arr.chart_level[ci];
+    if (l >= 0 && !polys[ci].empty()) by_plane[{s.charts[ci].axis, c.sn[s.charts[ci].axis][l]}].push_back(static_cast<int>(ci));
+  }
+  for (std::size_t cid = 0; cid < s.corners.size(); ++cid) {
+    const Vec3& q = snapped[cid];
+    for (int a = 0; a < 3; ++a) {
+      auto it = by_plane.find({a, static_cast<long long>(q[a])});
+      if (it == by_plane.end()) continue;
+      for (int ci : it->second) {
+        const auto& own = s.corners[cid].charts;
+        if (std::binary_search(own.begin(), own.end(), ci)) continue;
+        // a corner landing on one of the chart's corners is already a merge
+        bool on_corner = false;
+        for (const auto& loop : s.faces[static_cast<std::size_t>(ci)].loops)
+          for (int other : loop.corners) on_corner = on_corner || snapped[other] == q;
+        if (on_corner) continue;
+        const int u = (a + 1) % 3;
+        const int v = (a + 2) % 3;
+        if (!in_polygon(polys[static_cast<std::size_t>(ci)], q[u], q[v])) continue;
+        const auto& ch = s.charts[static_cast<std::size_t>(ci)];
+        SnapDefect d;
+        d.kind = DefectKind::CornerOnFacet;
+        d.chart = ci;
+        d.corners = {static_cast<int>(cid)};
+        d.positions = {scaled(static_cast<int>(cid))};
+        d.lattice = q;
+        d.description = fmt::format("corner {} {} is pushed onto chart {} ({} at {} = {:.6g}) at lattice point {}", cid,
+                                    fmt_point(scaled(static_cast<int>(cid))), ci, core::label_name(ch.label), kAxis[a],
+                                    ch.coordinate * c.scale, fmt_point(q));
+        out.push_back(std::move(d));
+      }
+    }
+  }
+  return out;
+}
+
+// --- the snapped polycube when levels collapse ------------------------------------------------
+
+//! Scaled polycube positions with every chart moved to its rounded plane and the displacement
+//! extended harmonically (uniform graph Laplacian of the tet mesh) to the other vertices.
+std::vector<Vec3> deform_to_snapped(const core::PolycubeMap& map, const structure::PolycubeStructure& s,
+                                    const Arrangement& arr, const std::array<std::vector<long long>, 3>& sn,
+                                    double scale) {
+  const int nv = map.num_vertices();
+  std::vector<Vec3> out(static_cast<std::size_t>(nv));
+  for (int v = 0; v < nv; ++v) out[v] = map.polycube[v] * scale;
+  const auto et = core::unique_edges(map.polycube_mesh());
+  for (int a = 0; a < 3; ++a) {
+    std::vector<char> fixed(static_cast<std::size_t>(nv), 0);
+    std::vector<double> disp(static_cast<std::size_t>(nv), 0.0);
+    for (std::size_t f = 0; f < s.triangles.size(); ++f) {
+      const int ci = s.triangle_chart[f];
+      if (s.charts[ci].axis != a) continue;
+      const double target = static_cast<double>(sn[a][arr.chart_level[ci]]);
+      for (int v : s.triangles[f]) {
+        if (fixed[v]) continue;
+        fixed[v] = 1;
+        disp[v] = target - out[v][a];
+      }
+    }
+    std::vector<int> free_id(static_cast<std::size_t>(nv), -1);
+    int nfree = 0;
+    for (int v = 0; v < nv; ++v)
+      if (!fixed[v]) free_id[v] = nfree++;
+    if (nfree > 0) {
+      std::vector<Eigen::Triplet<double>> trip;
+      Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nfree);
+      std::vector<double> degree(static_cast<std::size_t>(nfree), 0.0);
+      for (const auto& e : et.edges) {
+        if (e[0] == e[1]) continue;
+        const int i = free_id[e[0]];
+        const int j = free_id[e[1]];
+        if (i >= 0) degree[i] += 1.0;
+        if (j >= 0) degree[j] += 1.0;
+        if (i >= 0 && j >= 0) {
+          trip.emplace_back(i, j, -1.0);
+          trip.emplace_back(j, i, -1.0);
+        } else if (i >= 0) {
+          rhs[i] += disp[e[1]];
+        } else if (j >= 0) {
+          rhs[j] += disp[e[0]];
+        }
+      }
+      for (int i = 0; i < nfree; ++i) trip.emplace_back(i, i, degree[i] > 0.0 ? degree[i] : 1.0);
+      Eigen::SparseMatrix<double> L(nfree, nfree);
+      L.setFromTriplets(trip.begin(), trip.end());
+      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(L);
+      if (solver.info() != Eigen::Success) throw core::SolverError("snapping: the harmonic extension failed");
+      const Eigen::VectorXd x = solver.solve(rhs);
+      for (int v = 0; v < nv; ++v)
+        if (free_id[v] >= 0) disp[v] = x[free_id[v]];
+    }
+    for (int v = 0; v < nv; ++v) out[v][a] += disp[v];
+  }
+  return out;
+}
+
+//! Tets whose orientation is not positive (with a relative flatness threshold).
+std::vector<int> degenerate_tets(const std::vector<core::Tet>& tets, const std::vector<Vec3>& pos) {
+  std::vector<int> bad;
+  for (std::size_t t = 0; t < tets.size(); ++t) {
+    const auto& c = tets[t];
+    const Vec3 e1 = pos[c[1]] - pos[c[0]];
+    const Vec3 e2 = pos[c[2]] - pos[c[0]];
+    const Vec3 e3 = pos[c[3]] - pos[c[0]];
+    const double l = std::max({e1.norm(), e2.norm(), e3.norm()});
+    if (!(e1.dot(e2.cross(e3)) > 1e-12 * l * l * l)) bad.push_back(static_cast<int>(t));
+  }
+  return bad;
+}
+
+int count_inverted_hexes(const core::HexMesh& m) {
+  int n = 0;
+  for (const auto& h : m.cells) {
+    bool bad = false;
+    for (int i = 0; i < 8 && !bad; ++i) {
+      const auto& nb = core::kHexCornerNeighbors[static_cast<std::size_t>(i)];
+      const Vec3& p = m.points[h[i]];
+      const double j = (m.points[h[nb[0]]] - p).dot((m.points[h[nb[1]]] - p).cross(m.points[h[nb[2]]] - p));
+      bad = !(j > 0.0);
+    }
+    n += bad ? 1 : 0;
+  }
+  return n;
+}
+
+}  // namespace
+
+const char* defect_name(DefectKind k) {
+  switch (k) {
+    case DefectKind::CornersMerged: return "corners merged";
+    case DefectKind::CornerOnFacet: return "corner pushed onto a facet";
+    case DefectKind::EdgeCollapsed: return "edge collapsed";
+    case DefectKind::ChartCollapsed: return "chart collapsed";
+    case DefectKind::TetsDegenerated: return "tets flattened or inverted";
+  }
+  return "?";
+}
+
+std::string SnapReport::summary(int max_items) const {
+  if (defects.empty()) return "no defect";
+  std::string out;
+  for (DefectKind k : {DefectKind::CornersMerged, DefectKind::CornerOnFacet, DefectKind::EdgeCollapsed,
+                       DefectKind::ChartCollapsed, DefectKind::TetsDegenerated}) {
+    int n = 0;
+    std::string items;
+    for (const SnapDefect& d : defects)
+      if (d.kind == k) {
+        if (n < max_items) items += (items.empty() ? "" : "; ") + d.description;
+        ++n;
+      }
+    if (n == 0) continue;
+    if (!out.empty()) out += " | ";
+    out += fmt::format("{}: {}{}", defect_name(k), items, n > max_items ? fmt::format("; ... ({} in all)", n) : "");
+  }
+  return out;
+}
+
+GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& options) {
+  const auto t_start = Clock::now();
+  core::check_map_indices(map);
+  if (!(options.scale >= 0.0) || !std::isfinite(options.scale))
+    throw core::InputError(fmt::format("scale must be a positive number (got {})", options.scale));
+  if (options.target_hexes < 0 || options.target_quads < 0)
+    throw core::InputError("the target number of hexes or quads must be positive");
+  if (!(options.tolerance >= 0.0)) throw core::InputError("the tolerance must be >= 0");
+
+  GridResult res;
+  const structure::PolycubeStructure s = structure::extract_structure(map);
+  const double diag = core::bounding_box(map.polycube).diagonal();
+  const double tol = options.tolerance * diag;
+  const TetLocator base_locator(map.tets, map.polycube, tol);
+  const Arrangement arr = build_arrangement(s, base_locator, tol, options.max_lattice_points);
+
+  // 1. the scale
+  double scale = 1.0;
+  if (options.scale > 0.0)
+    scale = options.scale;
+  else if (options.target_hexes > 0)
+    scale = choose_scale(arr, 0, options.target_hexes);
+  else if (options.target_quads > 0)
+    scale = choose_scale(arr, 1, options.target_quads);
+  res.scale = scale;
+  const auto sn = snapped_levels(arr, scale);
+  core::logger().info("gridding: scale {:.6g}, {} x {} x {} chart planes", scale, arr.level[0].size(),
+                      arr.level[1].size(), arr.level[2].size());
+
+  // 2. snapping: how far the levels move, whether some collapse
+  SnapReport& rep = res.snapping;
+  const double tol_lattice = tol * scale;
+  for (int a = 0; a < 3; ++a) {
+    rep.levels[a] = static_cast<int>(arr.level[a].size());
+    for (std::size_t i = 0; i < sn[a].size(); ++i) {
+      rep.max_displacement = std::max(rep.max_displacement, std::abs(static_cast<double>(sn[a][i]) - arr.level[a][i] * scale));
+      if (i > 0 && sn[a][i] <= sn[a][i - 1]) ++rep.collapsed_levels;
+    }
+  }
+  rep.needed = rep.max_displacement > tol_lattice;
+  const SnapContext ctx{s, arr, sn, scale};
+  for (const auto& c : s.corners)
+    if ((snap_point(ctx, c.position) - c.position * scale).cwiseAbs().maxCoeff() > tol_lattice) ++rep.corners_moved;
+  rep.deformed = rep.collapsed_levels > 0;
+
+  // 3. the lattice: integer cells inside the snapped arrangement boxes
+  std::array<long long, 3> lo{};
+  std::array<long long, 3> n{};
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = sn[a].front();
+    n[a] = sn[a].back() - sn[a].front();
+    res.lattice_min[a] = static_cast<int>(sn[a].front());
+    res.lattice_max[a] = static_cast<int>(sn[a].back());
+  }
+  const long long npoints_box = (n[0] + 1) * (n[1] + 1) * (n[2] + 1);
+  if (npoints_box > options.max_lattice_points || npoints_box > INT_MAX)
+    throw core::InputError(fmt::format("the lattice at scale {:.6g} has {} x {} x {} cells: too large (choose a smaller "
+                                       "scale or fewer hexes)", scale, n[0], n[1], n[2]));
+  std::array<std::vector<int>, 3> cell_box;  // arrangement interval of each lattice cell
+  for (int a = 0; a < 3; ++a) {
+    cell_box[a].assign(static_cast<std::size_t>(n[a]), -1);
+    for (std::size_t i = 0; i + 1 < sn[a].size(); ++i)
+      for (long long c = sn[a][i]; c < sn[a][i + 1]; ++c) cell_box[a][static_cast<std::size_t>(c - lo[a])] = static_cast<int>(i);
+  }
+  const int nx = static_cast<int>(n[0]);
+  const int ny = static_cast<int>(n[1]);
+  const int nz = static_cast<int>(n[2]);
+  auto pidx = [&](int i, int j, int k) { return (static_cast<std::size_t>(k) * (ny + 1) + j) * (nx + 1) + i; };
+  std::vector<int> point_id(static_cast<std::size_t>(npoints_box), -1);
+  std::vector<std::array<int, 3>> cells;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        if (arr.is_inside(cell_box[0][i], cell_box[1][j], cell_box[2][k])) {
+          cells.push_back({i, j, k});
+          for (int c = 0; c < 8; ++c) point_id[pidx(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1))] = 0;
+        }
+  if (cells.empty())
+    throw core::GeometryError(fmt::format("no lattice cell lies inside the polycube at scale {:.6g}", scale));
+  std::vector<std::array<int, 3>> lattice_points;
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i)
+        if (point_id[pidx(i, j, k)] == 0) {
+          point_id[pidx(i, j, k)] = static_cast<int>(lattice_points.size());
+          lattice_points.push_back({i, j, k});
+        }
+  // hexes in the order of elements.h: 0-1-2-3 bottom ring ccw from above, 4-7 above
+  constexpr std::array<std::array<int, 3>, 8> kCorner{
+      {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}};
+  core::HexMesh& hp = res.hex_polycube;
+  hp.cells.reserve(cells.size());
+  for (const auto& c : cells) {
+    core::Hex h{};
+    for (int v = 0; v < 8; ++v) h[v] = point_id[pidx(c[0] + kCorner[v][0], c[1] + kCorner[v][1], c[2] + kCorner[v][2])];
+    hp.cells.push_back(h);
+  }
+  hp.points.reserve(lattice_points.size());
+  for (const auto& p : lattice_points)
+    hp.points.emplace_back(static_cast<double>(p[0] + lo[0]), static_cast<double>(p[1] + lo[1]),
+                           static_cast<double>(p[2] + lo[2]));
+  point_id.clear();
+  point_id.shrink_to_fit();
+
+  // 4. defects (only possible when levels collapse) and the space the points are located in
+  std::vector<Vec3> deformed;
+  if (rep.deformed) {
+    rep.defects = detect_defects(ctx);
+    deformed = deform_to_snapped(map, s, arr, sn, scale);
+    const std::vector<int> bad = degenerate_tets(map.tets, deformed);
+    if (!bad.empty()) {
+      SnapDefect d;
+      d.kind = DefectKind::TetsDegenerated;
+      d.count = static_cast<int>(bad.size());
+      d.description = fmt::format("the snapped polycube has {} flat or inverted tets (first: tet {})", bad.size(), bad[0]);
+      rep.defects.push_back(std::move(d));
+    }
+    core::logger().warn("snapping at scale {:.6g} collapses {} coordinate level(s): {}", scale, rep.collapsed_levels,
+                        rep.summary());
+  }
+  // inverse of the per-axis snapping map, lattice coordinate -> polycube coordinate (exact path)
+  std::array<std::vector<double>, 3> inverse;
+  if (!rep.deformed)
+    for (int a = 0; a < 3; ++a) {
+      inverse[a].resize(static_cast<std::size_t>(n[a] + 1));
+      for (std::size_t i = 0; i + 1 < sn[a].size(); ++i) {
+        const double l0 = arr.level[a][i];
+        const double l1 = arr.level[a][i + 1];
+        const double len = static_cast<double>(sn[a][i + 1] - sn[a][i]);
+        for (long long c = sn[a][i]; c <= sn[a][i + 1]; ++c) {
+          const double t = static_cast<double>(c - sn[a][i]) / len;
+          inverse[a][static_cast<std::size_t>(c - lo[a])] = c == sn[a][i + 1] ? l1 : l0 + t * (l1 - l0);
+        }
+      }
+    }
+
+  // 5. which points to locate
+  const core::HexBoundary hb = core::boundary(hp);
+  std::vector<int> to_locate;
+  if (options.volume) {
+    to_locate.resize(lattice_points.size());
+    std::iota(to_locate.begin(), to_locate.end(), 0);
+  } else {
+    to_locate = hb.vertex_map;
+  }
+
+  // 6. locate and map
+  const auto t_locate = Clock::now();
+  std::vector<Vec3> model_pos(lattice_points.size(), Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
+  {
+    const TetLocator* locator = &base_locator;
+    std::unique_ptr<TetLocator> deformed_locator;
+    if (rep.deformed) {
+      deformed_locator = std::make_unique<TetLocator>(map.tets, deformed, tol_lattice);
+      locator = deformed_locator.get();
+    }
+    core::ProgressTask task("map lattice points", static_cast<std::int64_t>(to_locate.size()));
+    std::size_t done = 0;
+    for (int pid : to_locate) {
+      const auto& lp = lattice_points[static_cast<std::size_t>(pid)];
+      Vec3 q;
+      if (rep.deformed)
+        q = hp.points[static_cast<std::size_t>(pid)];
+      else
+        q = Vec3(inverse[0][lp[0]], inverse[1][lp[1]], inverse[2][lp[2]]);
+      TetLocator::Hit hit = locator->locate(q);
+      if (hit.tet >= 0) {
+        ++res.points_located;
+      } else {
+        hit = locator->nearest(q, 2);
+        if (hit.tet < 0) hit = locator->nearest_brute_force(q);
+        ++res.points_failed;
+        res.max_failed_distance = std::max(res.max_failed_distance, -hit.score / (rep.deformed ? scale : 1.0));
+      }
+      if (hit.tet < 0) throw core::GeometryError("gridding: the polycube has no usable tet");
+      // clamp to the tet (points on the boundary may be outside by rounding) and map
+      std::array<double, 4> b = hit.bary;
+      double sum = 0.0;
+      for (double& x : b) sum += (x = std::max(0.0, x));
+      const auto& t = map.tets[static_cast<std::size_t>(hit.tet)];
+      Vec3 p = Vec3::Zero();
+      for (int k = 0; k < 4; ++k) p += (b[k] / sum) * map.model[t[k]];
+      model_pos[static_cast<std::size_t>(pid)] = p;
+      if ((++done & 0xFFFF) == 0) task.set(static_cast<std::int64_t>(done));
+    }
+    task.finish();
+  }
+  res.seconds_locate = seconds_since(t_locate);
+  if (res.points_failed > 0)
+    core::logger().warn("{} lattice point(s) lie outside the polycube by up to {:.3g}: mapped to the nearest tet",
+                        res.points_failed, res.max_failed_distance);
+
+  // 7. assemble the meshes
+  if (options.volume) {
+    res.hex_model.cells = hp.cells;
+    res.hex_model.points = model_pos;
+    res.inverted_model_hexes = count_inverted_hexes(res.hex_model);
+  }
+  res.quad_polycube = hb.surface;
+  res.quad_model.cells = hb.surface.cells;
+  res.quad_model.points.reserve(hb.vertex_map.size());
+  for (int v : hb.vertex_map) res.quad_model.points.push_back(model_pos[static_cast<std::size_t>(v)]);
+  res.quad_polycube.labels.clear();
+  res.quad_model.labels.clear();
+  res.seconds_total = seconds_since(t_start);
+  return res;
+}
+
+}  // namespace polycube::mesh

@@ -1,0 +1,43 @@
+#include "simplify/simplify.h"
+
+#include "structure/structure.h"
+#include "structure/validate.h"
+
+#include <chrono>
+
+namespace polycube::simplify {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+}  // namespace
+
+SimplifyResult simplify_map(const core::PolycubeMap& map, const SimplifyOptions& options) {
+  SimplifyResult r;
+  auto t = Clock::now();
+  structure::validate_map(map);
+  r.seconds_validate = since(t);
+  t = Clock::now();
+  const auto s = structure::extract_structure(map);
+  r.seconds_structure = since(t);
+  r.corners = static_cast<int>(s.corners.size());
+  r.edges = static_cast<int>(s.edges.size());
+  r.charts = static_cast<int>(s.charts.size());
+  r.alignment = align_corners(s, options.align);
+  if (options.count_domains) {
+    t = Clock::now();
+    const auto& sys = r.alignment.system;
+    std::array<std::vector<double>, 3> before, after;
+    for (int a = 0; a < 3; ++a) {
+      before[a] = sys.axes[a].coordinate;
+      after[a].assign(r.alignment.class_value[a].begin(), r.alignment.class_value[a].end());
+    }
+    r.before = count_domains(sys, s, before);
+    r.after = count_domains(sys, s, after);
+    r.seconds_domains = since(t);
+  }
+  if (options.fit_map) r.fit = fit_polycube(map, s, r.alignment, options.fit);
+  return r;
+}
+
+}  // namespace polycube::simplify

@@ -1,0 +1,135 @@
+#include "solve/milp.h"
+
+#include "core/errors.h"
+
+#include <CbcModel.hpp>
+#include <ClpSimplex.hpp>
+#include <CoinPackedMatrix.hpp>
+#include <OsiClpSolverInterface.hpp>
+
+#include <cmath>
+
+namespace polycube::solve {
+
+namespace {
+
+double coin_bound(double v, double inf) {
+  if (std::isinf(v)) return v > 0 ? inf : -inf;
+  return v;
+}
+
+}  // namespace
+
+int LinearProgram::add_variable(double cost_coefficient, double lower_bound, double upper_bound, bool is_integer) {
+  cost.push_back(cost_coefficient);
+  lower.push_back(lower_bound);
+  upper.push_back(upper_bound);
+  if (is_integer || !integer.empty()) {
+    integer.resize(cost.size() - 1, 0);
+    integer.push_back(is_integer ? 1 : 0);
+  }
+  return static_cast<int>(cost.size()) - 1;
+}
+
+int LinearProgram::add_row(std::vector<int> columns, std::vector<double> coefficients, double lower_bound,
+                           double upper_bound) {
+  Row r;
+  r.columns = std::move(columns);
+  r.coefficients = std::move(coefficients);
+  r.lower = lower_bound;
+  r.upper = upper_bound;
+  rows.push_back(std::move(r));
+  return static_cast<int>(rows.size()) - 1;
+}
+
+const char* status_name(MilpStatus status) {
+  switch (status) {
+    case MilpStatus::Optimal: return "optimal";
+    case MilpStatus::Infeasible: return "infeasible";
+    case MilpStatus::Unbounded: return "unbounded";
+    case MilpStatus::Stopped: return "stopped";
+    case MilpStatus::Failed: return "failed";
+  }
+  return "?";
+}
+
+MilpResult solve_program(const LinearProgram& p, const MilpOptions& options) {
+  const int n = p.num_variables();
+  PC_REQUIRE(p.lower.size() == p.cost.size() && p.upper.size() == p.cost.size(), "variable arrays differ in size");
+  PC_REQUIRE(p.integer.empty() || p.integer.size() == p.cost.size(), "integer flags differ in size");
+  bool has_integer = false;
+  for (char c : p.integer) has_integer = has_integer || c != 0;
+
+  OsiClpSolverInterface si;
+  const double inf = si.getInfinity();
+  CoinPackedMatrix matrix(false, 0, 0);  // row ordered
+  matrix.setDimensions(0, n);
+  std::vector<double> rlo, rup;
+  rlo.reserve(p.rows.size());
+  rup.reserve(p.rows.size());
+  for (const auto& r : p.rows) {
+    PC_REQUIRE(r.columns.size() == r.coefficients.size(), "row sizes differ");
+    for (int c : r.columns) PC_REQUIRE(c >= 0 && c < n, "row column out of range");
+    matrix.appendRow(static_cast<int>(r.columns.size()), r.columns.data(), r.coefficients.data());
+    rlo.push_back(coin_bound(r.lower, inf));
+    rup.push_back(coin_bound(r.upper, inf));
+  }
+  std::vector<double> clo(static_cast<std::size_t>(n)), cup(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j) {
+    clo[j] = coin_bound(p.lower[j], inf);
+    cup[j] = coin_bound(p.upper[j], inf);
+  }
+  si.loadProblem(matrix, clo.data(), cup.data(), p.cost.data(), rlo.data(), rup.data());
+  si.messageHandler()->setLogLevel(0);
+  si.getModelPtr()->messageHandler()->setLogLevel(0);
+
+  MilpResult res;
+  if (!has_integer) {
+    res.solver = "CLP dual simplex";
+    si.initialSolve();
+    if (si.isProvenOptimal()) {
+      res.status = MilpStatus::Optimal;
+    } else if (si.isProvenPrimalInfeasible()) {
+      res.status = MilpStatus::Infeasible;
+      return res;
+    } else if (si.isProvenDualInfeasible()) {
+      res.status = MilpStatus::Unbounded;
+      return res;
+    } else {
+      res.status = MilpStatus::Failed;
+      return res;
+    }
+    const double* x = si.getColSolution();
+    res.x.assign(x, x + n);
+    res.objective = si.getObjValue();
+    return res;
+  }
+
+  res.solver = "CBC branch and cut";
+  for (int j = 0; j < n; ++j)
+    if (p.integer[j]) si.setInteger(j);
+  CbcModel model(si);
+  model.setLogLevel(0);
+  model.messageHandler()->setLogLevel(0);
+  if (options.time_limit > 0) model.setMaximumSeconds(options.time_limit);
+  if (options.relative_gap > 0) model.setAllowableFractionGap(options.relative_gap);
+  model.branchAndBound();
+  if (model.isProvenOptimal()) {
+    res.status = MilpStatus::Optimal;
+  } else if (model.isProvenInfeasible()) {
+    res.status = MilpStatus::Infeasible;
+    return res;
+  } else if (model.isProvenDualInfeasible()) {
+    res.status = MilpStatus::Unbounded;
+    return res;
+  } else {
+    res.status = model.bestSolution() ? MilpStatus::Stopped : MilpStatus::Failed;
+  }
+  if (const double* x = model.bestSolution()) {
+    res.x.assign(x, x + n);
+    res.objective = model.getObjValue();
+  }
+  return res;
+}
+
+}  // namespace polycube::solve

@@ -1,0 +1,62 @@
+#pragma once
+//! \file sparse_solver.h
+//! \brief Sparse symmetric positive-definite linear systems through CHOLMOD (SuiteSparse):
+//! analyze the pattern once, factorize many times with new values, solve many right-hand sides.
+//!
+//! The rest of the project never includes a CHOLMOD header: this adapter takes Eigen matrices.
+//! Matrices are column-major `Eigen::SparseMatrix<double>`; only the **upper triangle** (row <=
+//! column) is read, so callers may store the upper triangle only or the full symmetric matrix.
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include <memory>
+
+namespace polycube::solve {
+
+//! Cholesky factorization of sparse SPD matrices sharing one sparsity pattern.
+//!
+//! Typical use (Newton iterations): analyze(A) once, then factorize(A) and solve(b) at every
+//! iteration with the same pattern and new values.
+class SparseSpdSolver {
+ public:
+  SparseSpdSolver();
+  ~SparseSpdSolver();
+  SparseSpdSolver(const SparseSpdSolver&) = delete;
+  SparseSpdSolver& operator=(const SparseSpdSolver&) = delete;
+  SparseSpdSolver(SparseSpdSolver&&) noexcept;
+  SparseSpdSolver& operator=(SparseSpdSolver&&) noexcept;
+
+  //! Symbolic analysis (fill-reducing ordering) of the pattern of A.
+  //! \param A  n by n, compressed column-major; entries below the diagonal are ignored
+  //! \throw core::SolverError when A is not square or CHOLMOD fails
+  void analyze(const Eigen::SparseMatrix<double>& A);
+
+  //! Numeric factorization of A, whose pattern must be the analyzed one (analyze() is called
+  //! first when nothing was analyzed yet or the size changed).
+  //! \return false when A is not (numerically) positive definite; the solver then cannot solve
+  //!         until a later factorize() succeeds
+  //! \throw core::SolverError on other CHOLMOD failures (out of memory, ...)
+  bool factorize(const Eigen::SparseMatrix<double>& A);
+
+  //! Solve A x = b with the last successful factorization.
+  //! \param b  n right-hand side (or n by k block)
+  //! \throw core::SolverError when no factorization is available or sizes differ
+  [[nodiscard]] Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+  [[nodiscard]] Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const;
+
+  //! Size n of the analyzed matrix (0 before analyze()).
+  [[nodiscard]] int size() const;
+  //! True when a successful factorization is available.
+  [[nodiscard]] bool factorized() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+//! One-shot solve of the SPD system A x = b (upper triangle of A read).
+//! \throw core::SolverError when A is not positive definite or CHOLMOD fails
+Eigen::VectorXd solve_spd(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b);
+
+}  // namespace polycube::solve

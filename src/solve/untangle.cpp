@@ -1,0 +1,508 @@
+//! Elliptic untangling engine (see untangle.h). Garanzha et al. 2021, with Newton steps on a
+//! per-element projected Hessian instead of the paper's L-BFGS.
+#include "solve/untangle.h"
+
+#include "core/errors.h"
+#include "core/log.h"
+#include "solve/sparse_solver.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace polycube::solve {
+
+double chi(double det, double epsilon) {
+  const double s = std::sqrt(epsilon * epsilon + det * det);
+  if (det > 0) return 0.5 * (det + s);
+  return 0.5 * epsilon * epsilon / (s - det);  // same value, no cancellation for det < 0
+}
+
+namespace {
+
+using Mat3 = Eigen::Matrix3d;
+using Mat9 = Eigen::Matrix<double, 9, 9>;
+using Vec9 = Eigen::Matrix<double, 9, 1>;
+using Mat12 = Eigen::Matrix<double, 12, 12>;
+using Vec12 = Eigen::Matrix<double, 12, 1>;
+using Grad = Eigen::Matrix<double, 4, 3>;
+
+//! E(v)_ij = sum_k eps_ijk v_k: the block d²(r_a . (r_b x r_c))/dr_a dr_b for (a,b,c) cyclic.
+Mat3 levi(const Eigen::Vector3d& v) {
+  Mat3 m;
+  m << 0, v.z(), -v.y(), -v.z(), 0, v.x(), v.y(), -v.x(), 0;
+  return m;
+}
+
+//! Cofactor matrix K = d det / dJ (rows r1 x r2, r2 x r0, r0 x r1).
+Mat3 cofactor(const Mat3& J) {
+  Mat3 K;
+  K.row(0) = J.row(1).cross(J.row(2));
+  K.row(1) = J.row(2).cross(J.row(0));
+  K.row(2) = J.row(0).cross(J.row(1));
+  return K;
+}
+
+Vec9 vec(const Mat3& m) {
+  Vec9 v;
+  for (int d = 0; d < 3; ++d)
+    for (int k = 0; k < 3; ++k) v[3 * d + k] = m(d, k);
+  return v;
+}
+
+//! Value only (fast path for line searches).
+double energy_value(const Mat3& J, double det, double eps, double lambda) {
+  const double c = chi(det, eps);
+  return J.squaredNorm() / 3.0 / std::cbrt(c * c) + lambda * (det * det + 1.0) / c;
+}
+
+Mat3 jacobian(const Grad& G, const Eigen::VectorXd& x, const std::array<int, 4>& tet) {
+  Mat3 J = Mat3::Zero();
+  for (int i = 0; i < 4; ++i) {
+    const Eigen::Vector3d p = x.segment<3>(3 * tet[i]);
+    J += p * G.row(i);
+  }
+  return J;
+}
+
+//! One reduction entry: local coordinate `local` of a term equals coef * y[col] (+ const).
+struct Entry {
+  int local;
+  int col;
+  double coef;
+};
+
+//! Terms (elements, attractions) gathered through the reduction, with Hessian slots.
+struct Assembly {
+  int n = 0;                          // #y
+  Eigen::SparseMatrix<double> H;      // upper triangle pattern, CSC
+  std::vector<int> diag_slot;         // #y
+  // elements
+  std::vector<int> elem_offset;       // #T+1 into entries
+  std::vector<Entry> entries;
+  std::vector<int> elem_slot_offset;  // #T+1 into slots
+  std::vector<int> slots;
+  // attractions (3 local coordinates each)
+  std::vector<int> attr_offset;
+  std::vector<Entry> attr_entries;
+  std::vector<int> attr_slot_offset;
+  std::vector<int> attr_slots;
+};
+
+void gather(const LinearReduction& R, const int* verts, int nv, std::vector<Entry>& out) {
+  for (int i = 0; i < nv; ++i)
+    for (int d = 0; d < 3; ++d) {
+      const int row = 3 * verts[i] + d;
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(R.B, row); it; ++it)
+        if (it.value() != 0.0) out.push_back({3 * i + d, static_cast<int>(it.col()), it.value()});
+    }
+}
+
+Assembly build_assembly(const TetElements& el, const LinearReduction& R,
+                        const std::vector<Attraction>& attractions) {
+  Assembly a;
+  a.n = R.num_variables();
+  a.elem_offset.reserve(el.tets.size() + 1);
+  a.elem_offset.push_back(0);
+  for (const auto& t : el.tets) {
+    gather(R, t.data(), 4, a.entries);
+    a.elem_offset.push_back(static_cast<int>(a.entries.size()));
+  }
+  a.attr_offset.push_back(0);
+  for (const Attraction& at : attractions) {
+    gather(R, &at.vertex, 1, a.attr_entries);
+    a.attr_offset.push_back(static_cast<int>(a.attr_entries.size()));
+  }
+  // Pattern: upper-triangle pairs of every term plus the whole diagonal.
+  std::vector<Eigen::Triplet<double, int>> trip;
+  auto add_pairs = [&](const std::vector<Entry>& e, const std::vector<int>& off) {
+    for (std::size_t t = 0; t + 1 < off.size(); ++t)
+      for (int p = off[t]; p < off[t + 1]; ++p)
+        for (int q = off[t]; q < off[t + 1]; ++q)
+          if (e[p].col <= e[q].col) trip.emplace_back(e[p].col, e[q].col, 0.0);
+  };
+  add_pairs(a.entries, a.elem_offset);
+  add_pairs(a.attr_entries, a.attr_offset);
+  for (int j = 0; j < a.n; ++j) trip.emplace_back(j, j, 0.0);
+  a.H.resize(a.n, a.n);
+  a.H.setFromTriplets(trip.begin(), trip.end());
+  a.H.makeCompressed();
+  trip.clear();
+  trip.shrink_to_fit();
+  const int* outer = a.H.outerIndexPtr();
+  const int* inner = a.H.innerIndexPtr();
+  auto slot_of = [&](int r, int c) {
+    const int* b = inner + outer[c];
+    const int* e = inner + outer[c + 1];
+    const int* it = std::lower_bound(b, e, r);
+    PC_REQUIRE(it != e && *it == r, "untangle: missing Hessian slot");
+    return static_cast<int>(it - inner);
+  };
+  auto make_slots = [&](const std::vector<Entry>& e, const std::vector<int>& off, std::vector<int>& so,
+                        std::vector<int>& slots) {
+    so.assign(1, 0);
+    for (std::size_t t = 0; t + 1 < off.size(); ++t) {
+      for (int p = off[t]; p < off[t + 1]; ++p)
+        for (int q = off[t]; q < off[t + 1]; ++q)
+          if (e[p].col <= e[q].col) slots.push_back(slot_of(e[p].col, e[q].col));
+      so.push_back(static_cast<int>(slots.size()));
+    }
+  };
+  make_slots(a.entries, a.elem_offset, a.elem_slot_offset, a.slots);
+  make_slots(a.attr_entries, a.attr_offset, a.attr_slot_offset, a.attr_slots);
+  a.diag_slot.resize(a.n);
+  for (int j = 0; j < a.n; ++j) a.diag_slot[j] = slot_of(j, j);
+  return a;
+}
+
+struct Stats {
+  double energy = 0;
+  double min_det = std::numeric_limits<double>::infinity();
+  int inverted = 0;
+};
+
+//! Energy, min det and #inverted at x (parallel over elements, deterministic reduction order
+//! within fixed blocks).
+Stats evaluate(const TetElements& el, const std::vector<Attraction>& attr, const Eigen::VectorXd& x, double eps,
+               double lambda, double det_target) {
+  const int T = el.size();
+  constexpr int kBlock = 2048;
+  const int nb = (T + kBlock - 1) / kBlock;
+  std::vector<Stats> part(static_cast<std::size_t>(nb));
+  tbb::parallel_for(0, nb, [&](int b) {
+    Stats s;
+    const int e = std::min(T, (b + 1) * kBlock);
+    for (int t = b * kBlock; t < e; ++t) {
+      const Mat3 J = jacobian(el.gradients[t], x, el.tets[t]);
+      const double det = J.determinant();
+      s.min_det = std::min(s.min_det, det);
+      s.inverted += det <= det_target;
+      s.energy += el.weights[t] * energy_value(J, det, eps, lambda);
+    }
+    part[static_cast<std::size_t>(b)] = s;
+  });
+  Stats total;
+  for (const Stats& s : part) {
+    total.energy += s.energy;
+    total.min_det = std::min(total.min_det, s.min_det);
+    total.inverted += s.inverted;
+  }
+  for (const Attraction& a : attr)
+    total.energy += a.weight * (x.segment<3>(3 * a.vertex) - a.target).squaredNorm();
+  return total;
+}
+
+//! Project a symmetric matrix to positive semi-definite (negative eigenvalues clamped to 0).
+Mat9 project_psd(const Mat9& H) {
+  Eigen::SelfAdjointEigenSolver<Mat9> es(H);
+  Vec9 ev = es.eigenvalues();
+  if (ev.minCoeff() >= 0) return H;
+  for (int i = 0; i < 9; ++i) ev[i] = std::max(ev[i], 0.0);
+  return es.eigenvectors() * ev.asDiagonal() * es.eigenvectors().transpose();
+}
+
+//! Local gradient and projected Hessian in the 12 coordinates of one element.
+void element_derivatives(const Grad& G, const Mat3& J, double w, double eps, double lambda, Vec12& g, Mat12& H) {
+  const ElementEnergy e = elliptic_energy(J, eps, lambda);
+  const Mat9 HJ = project_psd(e.hessian);
+  for (int d = 0; d < 3; ++d) {
+    const Eigen::Vector4d gd = G * e.gradient.segment<3>(3 * d);
+    for (int i = 0; i < 4; ++i) g[3 * i + d] = w * gd[i];
+  }
+  for (int d = 0; d < 3; ++d)
+    for (int f = 0; f < 3; ++f) {
+      const Eigen::Matrix4d blk = G * HJ.block<3, 3>(3 * d, 3 * f) * G.transpose();
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) H(3 * i + d, 3 * j + f) = w * blk(i, j);
+    }
+}
+
+}  // namespace
+
+ElementEnergy elliptic_energy(const Eigen::Matrix3d& J, double eps, double lambda) {
+  ElementEnergy out;
+  const double D = J.determinant();
+  const double s = std::sqrt(eps * eps + D * D);
+  const double c = chi(D, eps);
+  const double c1 = c / s;                      // dχ/dD
+  const double c2 = 0.5 * eps * eps / (s * s * s);  // d²χ/dD²
+  const Mat3 K = cofactor(J);
+  const Vec9 j = vec(J);
+  const Vec9 k = vec(K);
+  // Hessian of det: blocks (a,b) for (a,b,c) cyclic are levi(r_c), transposes below.
+  Mat9 HD = Mat9::Zero();
+  const Eigen::Vector3d r0 = J.row(0).transpose(), r1 = J.row(1).transpose(), r2 = J.row(2).transpose();
+  HD.block<3, 3>(0, 3) = levi(r2);
+  HD.block<3, 3>(3, 6) = levi(r0);
+  HD.block<3, 3>(6, 0) = levi(r1);
+  HD.block<3, 3>(3, 0) = HD.block<3, 3>(0, 3).transpose();
+  HD.block<3, 3>(6, 3) = HD.block<3, 3>(3, 6).transpose();
+  HD.block<3, 3>(0, 6) = HD.block<3, 3>(6, 0).transpose();
+
+  // shape term a(J) g(D): a = |J|²/3, g = χ^(-2/3)
+  const double a = J.squaredNorm() / 3.0;
+  const double g = 1.0 / std::cbrt(c * c);
+  const double g1 = -2.0 / 3.0 * g / c * c1;
+  const double g2 = 10.0 / 9.0 * g / (c * c) * c1 * c1 - 2.0 / 3.0 * g / c * c2;
+  // volume term h(D) = (D²+1)/χ
+  const double q = D * D + 1.0;
+  const double h = q / c;
+  const double h1 = 2.0 * D / c - q * c1 / (c * c);
+  const double h2 = 2.0 / c - 4.0 * D * c1 / (c * c) - q * c2 / (c * c) + 2.0 * q * c1 * c1 / (c * c * c);
+
+  out.value = a * g + lambda * h;
+  out.gradient = (2.0 / 3.0) * g * j + (a * g1 + lambda * h1) * k;
+  out.hessian = (2.0 / 3.0) * g * Mat9::Identity() + (2.0 / 3.0) * g1 * (j * k.transpose() + k * j.transpose()) +
+                (a * g2 + lambda * h2) * (k * k.transpose()) + (a * g1 + lambda * h1) * HD;
+  return out;
+}
+
+TetElements reference_elements(const std::vector<core::Vec3>& points, const std::vector<std::array<int, 4>>& tets,
+                               double scale) {
+  TetElements el;
+  el.tets = tets;
+  el.gradients.resize(tets.size());
+  el.weights.resize(tets.size());
+  for (std::size_t t = 0; t < tets.size(); ++t) {
+    const auto& c = tets[t];
+    for (int i = 0; i < 4; ++i)
+      if (c[i] < 0 || c[i] >= static_cast<int>(points.size()))
+        throw core::GeometryError("reference tet " + std::to_string(t) + " has an out-of-range vertex");
+    Mat3 S;
+    S.col(0) = scale * (points[c[1]] - points[c[0]]);
+    S.col(1) = scale * (points[c[2]] - points[c[0]]);
+    S.col(2) = scale * (points[c[3]] - points[c[0]]);
+    const double det = S.determinant();
+    const double len = std::max({S.col(0).norm(), S.col(1).norm(), S.col(2).norm()});
+    if (!(det > 1e-14 * len * len * len))
+      throw core::GeometryError("reference tet " + std::to_string(t) + " is flat or negatively oriented");
+    const Mat3 Si = S.inverse();
+    Grad G;
+    G.row(1) = Si.row(0);
+    G.row(2) = Si.row(1);
+    G.row(3) = Si.row(2);
+    G.row(0) = -(Si.row(0) + Si.row(1) + Si.row(2));
+    el.gradients[t] = G;
+    el.weights[t] = det / 6.0;
+  }
+  return el;
+}
+
+LinearReduction index_reduction(const std::vector<int>& var, int num_variables, const Eigen::VectorXd& fixed_value) {
+  PC_REQUIRE(static_cast<Eigen::Index>(var.size()) == fixed_value.size() && var.size() % 3 == 0,
+             "index_reduction: sizes");
+  LinearReduction r;
+  const int rows = static_cast<int>(var.size());
+  r.B.resize(rows, num_variables);
+  r.B.reserve(Eigen::VectorXi::Constant(rows, 1));
+  r.x0 = Eigen::VectorXd::Zero(rows);
+  for (int i = 0; i < rows; ++i) {
+    PC_REQUIRE(var[i] < num_variables, "index_reduction: variable out of range");
+    if (var[i] >= 0) r.B.insert(i, var[i]) = 1.0;
+    else r.x0[i] = fixed_value[i];
+  }
+  r.B.makeCompressed();
+  return r;
+}
+
+LinearReduction identity_reduction(int num_points) {
+  std::vector<int> var(static_cast<std::size_t>(3 * num_points));
+  for (int i = 0; i < 3 * num_points; ++i) var[i] = i;
+  return index_reduction(var, 3 * num_points, Eigen::VectorXd::Zero(3 * num_points));
+}
+
+Eigen::VectorXd flatten(const std::vector<core::Vec3>& points) {
+  Eigen::VectorXd x(3 * static_cast<Eigen::Index>(points.size()));
+  for (std::size_t v = 0; v < points.size(); ++v) x.segment<3>(3 * static_cast<Eigen::Index>(v)) = points[v];
+  return x;
+}
+
+std::vector<core::Vec3> unflatten(const Eigen::VectorXd& x) {
+  std::vector<core::Vec3> p(static_cast<std::size_t>(x.size() / 3));
+  for (std::size_t v = 0; v < p.size(); ++v) p[v] = x.segment<3>(3 * static_cast<Eigen::Index>(v));
+  return p;
+}
+
+UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::VectorXd& y,
+                        const UntangleOptions& o) {
+  const auto t0 = std::chrono::steady_clock::now();
+  PC_REQUIRE(el.gradients.size() == el.tets.size() && el.weights.size() == el.tets.size(),
+             "untangle: element arrays differ in size");
+  PC_REQUIRE(y.size() == R.num_variables() && R.x0.size() == R.B.rows() && R.B.rows() % 3 == 0,
+             "untangle: reduction and variables differ in size");
+  const int nv = R.num_points();
+  for (const auto& t : el.tets)
+    for (int v : t) PC_REQUIRE(v >= 0 && v < nv, "untangle: element vertex out of range");
+  for (const Attraction& a : o.attractions) PC_REQUIRE(a.vertex >= 0 && a.vertex < nv, "untangle: attraction vertex");
+
+  UntangleResult res;
+  const double lambda = o.volume_weight;
+  const double det_target = o.min_det_target;
+  Eigen::VectorXd x = R.apply(y);
+  double eps = std::max(o.initial_epsilon, o.min_epsilon);
+  Stats st = evaluate(el, o.attractions, x, eps, lambda, det_target);
+  res.inverted_before = st.inverted;
+  res.min_det_before = st.min_det;
+  if (el.size() == 0 || R.num_variables() == 0) {
+    res.untangled = st.inverted == 0;
+    res.inverted_after = st.inverted;
+    res.min_det = st.min_det;
+    res.energy = st.energy;
+    res.epsilon = eps;
+    return res;
+  }
+  // Already valid meshes need no large ε: start small so the barrier keeps them valid.
+  if (st.inverted == 0) eps = std::max(o.min_epsilon, std::min(eps, 1e-3 * std::max(st.min_det, 0.0)));
+
+  const Assembly A = build_assembly(el, R, o.attractions);
+  Eigen::SparseMatrix<double> H = A.H;
+  SparseSpdSolver solver;
+  solver.analyze(H);
+  const int n = A.n;
+  double damping = 0.0;
+  double t_assemble = 0, t_factor = 0, t_search = 0;
+  auto now = [] { return std::chrono::steady_clock::now(); };
+  auto secs = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
+  // Best state seen (fewest inverted elements, then lowest ε-independent order: latest).
+  Eigen::VectorXd best_y = y;
+  int best_inverted = st.inverted;
+  int last_progress = 0;
+
+  for (int outer = 0; outer < o.max_iterations; ++outer) {
+    ++res.iterations;
+    st = evaluate(el, o.attractions, x, eps, lambda, det_target);
+    const double E_prev = st.energy;
+    for (int step = 0; step < o.newton_steps; ++step) {
+      // Assemble the gradient and projected Hessian in y.
+      const auto ta = now();
+      double* hv = H.valuePtr();
+      std::fill(hv, hv + H.nonZeros(), 0.0);
+      Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
+      const int T = el.size();
+      constexpr int kBlock = 1024;
+      std::vector<Mat12> Hl(kBlock);
+      std::vector<Vec12> gl(kBlock);
+      for (int b0 = 0; b0 < T; b0 += kBlock) {
+        const int b1 = std::min(T, b0 + kBlock);
+        tbb::parallel_for(tbb::blocked_range<int>(b0, b1, 64), [&](const tbb::blocked_range<int>& r) {
+          for (int t = r.begin(); t < r.end(); ++t) {
+            const Mat3 J = jacobian(el.gradients[t], x, el.tets[t]);
+            element_derivatives(el.gradients[t], J, el.weights[t], eps, lambda, gl[t - b0], Hl[t - b0]);
+          }
+        });
+        for (int t = b0; t < b1; ++t) {
+          const Mat12& He = Hl[t - b0];
+          const Vec12& ge = gl[t - b0];
+          int s = A.elem_slot_offset[t];
+          for (int p = A.elem_offset[t]; p < A.elem_offset[t + 1]; ++p) {
+            const Entry& ep = A.entries[p];
+            g[ep.col] += ep.coef * ge[ep.local];
+            for (int q = A.elem_offset[t]; q < A.elem_offset[t + 1]; ++q) {
+              const Entry& eq = A.entries[q];
+              if (ep.col <= eq.col) hv[A.slots[s++]] += ep.coef * eq.coef * He(ep.local, eq.local);
+            }
+          }
+        }
+      }
+      for (std::size_t k = 0; k < o.attractions.size(); ++k) {
+        const Attraction& at = o.attractions[k];
+        const Eigen::Vector3d ga = 2.0 * at.weight * (x.segment<3>(3 * at.vertex) - at.target);
+        int s = A.attr_slot_offset[k];
+        for (int p = A.attr_offset[k]; p < A.attr_offset[k + 1]; ++p) {
+          const Entry& ep = A.attr_entries[p];
+          g[ep.col] += ep.coef * ga[ep.local];
+          for (int q = A.attr_offset[k]; q < A.attr_offset[k + 1]; ++q) {
+            const Entry& eq = A.attr_entries[q];
+            if (ep.col <= eq.col) hv[A.attr_slots[s++]] += ep.local == eq.local ? 2.0 * at.weight * ep.coef * eq.coef : 0.0;
+          }
+        }
+      }
+      const auto tf = now();
+      t_assemble += secs(ta, tf);
+      // Regularize (translations and other null directions of a projected Hessian).
+      double mean_diag = 0.0;
+      for (int j = 0; j < n; ++j) mean_diag += hv[A.diag_slot[j]];
+      mean_diag = std::max(mean_diag / n, 1e-300);
+      double reg = std::max(1e-9 * mean_diag, damping);
+      Eigen::SparseMatrix<double> Hr = H;
+      bool ok = false;
+      for (int attempt = 0; attempt < 12 && !ok; ++attempt) {
+        Hr = H;
+        double* rv = Hr.valuePtr();
+        for (int j = 0; j < n; ++j) rv[A.diag_slot[j]] += reg;
+        ok = solver.factorize(Hr);
+        if (!ok) reg *= 100.0;
+      }
+      if (!ok) throw core::SolverError("untangle: the Newton system could not be factorized");
+      ++res.newton_steps;
+      const Eigen::VectorXd dir = solver.solve(Eigen::VectorXd(-g));
+      const double slope = g.dot(dir);
+      const auto ts = now();
+      t_factor += secs(tf, ts);
+      if (!(slope < 0)) break;  // converged (or numerically stuck)
+      // Backtracking line search; once valid, never accept a step that inverts an element.
+      const Stats cur = evaluate(el, o.attractions, x, eps, lambda, det_target);
+      const bool keep_valid = cur.inverted == 0;
+      double alpha = 1.0;
+      bool accepted = false;
+      for (int ls = 0; ls < 40; ++ls, alpha *= 0.5) {
+        const Eigen::VectorXd yt = y + alpha * dir;
+        const Eigen::VectorXd xt = R.apply(yt);
+        const Stats trial = evaluate(el, o.attractions, xt, eps, lambda, det_target);
+        if (std::isfinite(trial.energy) && trial.energy <= cur.energy + 1e-4 * alpha * slope &&
+            (!keep_valid || trial.inverted == 0)) {
+          y = yt;
+          x = xt;
+          accepted = true;
+          break;
+        }
+      }
+      t_search += secs(ts, now());
+      if (!accepted) break;
+      if (alpha < 1e-3) damping = std::max(damping * 10.0, 1e-6 * mean_diag);  // poor model: damp
+      else damping *= 0.1;
+      if (std::abs(alpha * slope) < 1e-14 * std::abs(cur.energy)) break;
+    }
+    st = evaluate(el, o.attractions, x, eps, lambda, det_target);
+    const double E = st.energy;
+    core::logger().debug("untangle: iteration {} E {:.6g} eps {:.3g} min det {:.3g} inverted {}", outer, E, eps,
+                         st.min_det, st.inverted);
+    if (st.inverted < best_inverted) last_progress = outer;
+    if (st.inverted <= best_inverted) {
+      best_inverted = st.inverted;
+      best_y = y;
+    }
+    if (st.inverted > 0 && o.stall_iterations > 0 && outer - last_progress >= o.stall_iterations) break;
+    if (o.stop_when_untangled && st.inverted == 0) break;
+    if (st.inverted == 0 && std::abs(E_prev - E) <= o.tolerance * std::abs(E)) break;
+    // ε update of Garanzha et al. 2021 (section 4): follow the min det.
+    const double sigma = std::max(1.0 - E / E_prev, 0.1);
+    const double mu = (1.0 - sigma) * chi(st.min_det, eps);
+    if (st.min_det < mu) eps = std::max(o.min_epsilon, 2.0 * std::sqrt(mu * (mu - st.min_det)));
+    else eps = o.min_epsilon;
+  }
+  if (st.inverted > best_inverted) {
+    y = best_y;
+    x = R.apply(y);
+  }
+  core::logger().debug("untangle: assembly {:.2f} s, factorization+solve {:.2f} s, line search {:.2f} s", t_assemble,
+                       t_factor, t_search);
+  st = evaluate(el, o.attractions, x, eps, lambda, det_target);
+  res.untangled = st.inverted == 0;
+  res.inverted_after = st.inverted;
+  res.min_det = st.min_det;
+  res.energy = st.energy;
+  res.epsilon = eps;
+  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return res;
+}
+
+}  // namespace polycube::solve

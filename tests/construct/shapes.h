@@ -1,0 +1,97 @@
+#pragma once
+// Small closed surfaces built in code for the construct tests.
+#include "core/types.h"
+
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <utility>
+
+namespace polycube::test {
+
+//! Axis-aligned box [0,sx]x[0,sy]x[0,sz], each face split into n x n quads (2 triangles each),
+//! outward.
+inline core::TriMesh make_box(double sx, double sy, double sz, int n = 1, core::Vec3 offset = core::Vec3::Zero()) {
+  core::TriMesh m;
+  std::map<std::array<long, 3>, int> index;  // lattice coordinates -> vertex
+  auto vertex = [&](int i, int j, int k) {
+    const std::array<long, 3> key{i, j, k};
+    auto it = index.find(key);
+    if (it != index.end()) return it->second;
+    const int id = m.num_points();
+    m.points.emplace_back(offset + core::Vec3(sx * i / n, sy * j / n, sz * k / n));
+    index.emplace(key, id);
+    return id;
+  };
+  // For each axis and side, (u, v) spans the face; orientation chosen so normals point out.
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      const int u = (axis + 1) % 3;
+      const int v = (axis + 2) % 3;
+      for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) {
+          auto at = [&](int da, int db) {
+            std::array<int, 3> c{};
+            c[axis] = side * n;
+            c[u] = a + da;
+            c[v] = b + db;
+            return vertex(c[0], c[1], c[2]);
+          };
+          const int p00 = at(0, 0), p10 = at(1, 0), p11 = at(1, 1), p01 = at(0, 1);
+          if (side == 1) {
+            m.cells.push_back({p00, p10, p11});
+            m.cells.push_back({p00, p11, p01});
+          } else {
+            m.cells.push_back({p00, p11, p10});
+            m.cells.push_back({p00, p01, p11});
+          }
+        }
+    }
+  return m;
+}
+
+//! A UV sphere of radius r (rings x segments), outward.
+inline core::TriMesh make_sphere(double r, int rings, int segments) {
+  core::TriMesh m;
+  const double pi = std::numbers::pi;
+  m.points.emplace_back(0, 0, r);
+  for (int i = 1; i < rings; ++i) {
+    const double th = pi * i / rings;
+    for (int j = 0; j < segments; ++j) {
+      const double ph = 2 * pi * j / segments + 0.37;  // avoid symmetric ties with the axes
+      m.points.emplace_back(r * std::sin(th) * std::cos(ph), r * std::sin(th) * std::sin(ph), r * std::cos(th));
+    }
+  }
+  m.points.emplace_back(0, 0, -r);
+  const int south = m.num_points() - 1;
+  auto id = [&](int i, int j) { return 1 + (i - 1) * segments + (j % segments); };
+  for (int j = 0; j < segments; ++j) m.cells.push_back({0, id(1, j), id(1, j + 1)});
+  for (int i = 1; i + 1 < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      m.cells.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.cells.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  for (int j = 0; j < segments; ++j) m.cells.push_back({south, id(rings - 1, j + 1), id(rings - 1, j)});
+  return m;
+}
+
+//! A torus around the z axis (major radius R, minor r), outward.
+inline core::TriMesh make_torus(double R, double r, int nu, int nv) {
+  core::TriMesh m;
+  const double pi = std::numbers::pi;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const double u = 2 * pi * i / nu + 0.11;
+      const double v = 2 * pi * j / nv;
+      m.points.emplace_back((R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v));
+    }
+  auto id = [&](int i, int j) { return (i % nu) * nv + (j % nv); };
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      m.cells.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.cells.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return m;
+}
+
+}  // namespace polycube::test

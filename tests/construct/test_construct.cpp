@@ -1,0 +1,294 @@
+// Tests of construct/: tetrahedralization + refinement, graph-cut labeling, validity repair.
+// Validity is judged by the independent validator in validator.h, not by labeling_check.
+#include "construct/labeling.h"
+#include "construct/labeling_check.h"
+#include "construct/labeling_repair.h"
+#include "construct/tetrahedralize.h"
+#include "core/errors.h"
+#include "core/topology.h"
+#include "io/mesh_io.h"
+#include "solve/max_flow.h"
+
+#include "construct/pipeline.h"
+#include "construct/shapes.h"
+#include "construct/validator.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <filesystem>
+
+namespace polycube {
+namespace {
+
+namespace fs = std::filesystem;
+using test::expect_valid;
+using test::inverted_tets;
+using test::run_model;
+using test::run_pipeline;
+using test::tet_volume;
+
+// --- max flow -------------------------------------------------------------------------------
+
+TEST(MaxFlow, SmallNetworkHasTheKnownMinimumCut) {
+  // s->0 (3), s->1 (2), 0->1 (1), 0->t (2), 1->t (3): max flow 5, everything saturated at t side.
+  solve::FlowNetwork net(2);
+  net.source_capacity = {3.0, 2.0};
+  net.sink_capacity = {2.0, 3.0};
+  net.add_edge(0, 1, 1.0, 0.0);
+  const auto r = solve::max_flow(net);
+  EXPECT_NEAR(r.flow, 5.0, 1e-12);
+  // A chain with a bottleneck in the middle: s->0 (10), 0->1 (1), 1->t (10): cut 0 | 1.
+  solve::FlowNetwork chain(2);
+  chain.source_capacity = {10.0, 0.0};
+  chain.sink_capacity = {0.0, 10.0};
+  chain.add_edge(0, 1, 1.0, 1.0);
+  const auto c = solve::max_flow(chain);
+  EXPECT_NEAR(c.flow, 1.0, 1e-12);
+  EXPECT_EQ(c.on_sink[0], 0);
+  EXPECT_EQ(c.on_sink[1], 1);
+}
+
+TEST(MaxFlow, RejectsNegativeCapacity) {
+  solve::FlowNetwork net(2);
+  net.add_edge(0, 1, -1.0, 0.0);
+  EXPECT_THROW(solve::max_flow(net), core::InternalError);
+}
+
+// --- tetrahedralization ----------------------------------------------------------------------
+
+TEST(Tetrahedralize, CubeIsFilledKeepsItsSurfaceAndIsRefined) {
+  const core::TriMesh cube = test::make_box(1.0, 1.0, 1.0, 1);
+  const auto r = construct::tetrahedralize(cube);
+  EXPECT_NEAR(tet_volume(r.mesh), 1.0, 1e-9);
+  EXPECT_EQ(inverted_tets(r.mesh), 0);
+  const auto bnd = core::boundary(r.mesh);
+  EXPECT_EQ(bnd.surface.num_cells(), 12);
+  const auto d = construct::boundary_defects(r.mesh);
+  EXPECT_TRUE(d.ok()) << d.tets_with_several_boundary_facets << " "
+                      << d.interior_edges_between_boundary_vertices;
+  // The coarse cube needs the refinement: TetGen alone leaves tets with two boundary facets.
+  construct::TetrahedralizeOptions raw;
+  raw.refine = false;
+  EXPECT_FALSE(construct::boundary_defects(construct::tetrahedralize(cube, raw).mesh).ok());
+}
+
+TEST(Tetrahedralize, MaxVolumeMakesMoreTets) {
+  // A fine enough surface: with the surface kept (-Y), TetGen can only refine inside.
+  const core::TriMesh cube = test::make_box(1.0, 1.0, 1.0, 8);
+  construct::TetrahedralizeOptions coarse;
+  construct::TetrahedralizeOptions fine;
+  fine.max_volume = 0.0005;
+  const auto a = construct::tetrahedralize(cube, coarse);
+  const auto b = construct::tetrahedralize(cube, fine);
+  EXPECT_GT(b.tetgen_tets, a.tetgen_tets);
+  EXPECT_NEAR(tet_volume(b.mesh), 1.0, 1e-9);
+  EXPECT_EQ(inverted_tets(b.mesh), 0);
+  // Tets away from the surface respect the bound (the surface forbids Steiner points near it).
+  int inner_over = 0;
+  for (const auto& t : b.mesh.cells) {
+    core::Vec3 c = core::Vec3::Zero();
+    for (int k = 0; k < 4; ++k) c += b.mesh.points[t[k]] / 4;
+    if (c.minCoeff() < 0.25 || c.maxCoeff() > 0.75) continue;
+    core::TetMesh one;
+    one.points = {b.mesh.points[t[0]], b.mesh.points[t[1]], b.mesh.points[t[2]], b.mesh.points[t[3]]};
+    one.cells = {{0, 1, 2, 3}};
+    if (tet_volume(one) > 0.0005 * (1 + 1e-9)) ++inner_over;
+  }
+  EXPECT_EQ(inner_over, 0);
+}
+
+TEST(Tetrahedralize, RefineBoundaryOnAGivenTetMesh) {
+  // A single tet: four boundary facets, all edges on the boundary.
+  core::TetMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.cells = {{0, 1, 2, 3}};
+  construct::prepare_tet_mesh(m);
+  const auto stats = construct::refine_boundary(m);
+  EXPECT_EQ(stats.split_tets, 1);
+  EXPECT_TRUE(construct::boundary_defects(m).ok());
+  EXPECT_NEAR(tet_volume(m), 1.0 / 6.0, 1e-12);
+  EXPECT_EQ(inverted_tets(m), 0);
+  EXPECT_EQ(core::boundary(m).surface.num_cells(), 4);
+}
+
+TEST(Tetrahedralize, InvertedInputTetMeshIsReoriented) {
+  core::TetMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.cells = {{0, 2, 1, 3}};
+  construct::prepare_tet_mesh(m);
+  EXPECT_EQ(inverted_tets(m), 0);
+}
+
+TEST(Tetrahedralize, RefusesOpenSurface) {
+  core::TriMesh cube = test::make_box(1.0, 1.0, 1.0, 2);
+  cube.cells.pop_back();
+  try {
+    construct::tetrahedralize(cube);
+    FAIL() << "no exception";
+  } catch (const core::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("open"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Tetrahedralize, RefusesNonManifoldEdge) {
+  core::TriMesh cube = test::make_box(1.0, 1.0, 1.0, 1);
+  // A fin of two triangles (front and back) hanging from the edge of vertices of cells[0].
+  const int a = cube.cells[0][0];
+  const int b = cube.cells[0][1];
+  const int c = cube.num_points();
+  cube.points.push_back((cube.points[a] + cube.points[b]) / 2 + core::Vec3(3, 3, 3));
+  cube.cells.push_back({a, b, c});
+  cube.cells.push_back({b, a, c});
+  try {
+    construct::tetrahedralize(cube);
+    FAIL() << "no exception";
+  } catch (const core::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("manifold"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Tetrahedralize, RefusesSelfIntersectingSurface) {
+  core::TriMesh a = test::make_box(1.0, 1.0, 1.0, 1);
+  const core::TriMesh b = test::make_box(1.0, 1.0, 1.0, 1, core::Vec3(0.5, 0.4, 0.3));
+  const int off = a.num_points();
+  for (const auto& p : b.points) a.points.push_back(p);
+  for (const auto& t : b.cells) a.cells.push_back({t[0] + off, t[1] + off, t[2] + off});
+  try {
+    construct::tetrahedralize(a);
+    FAIL() << "no exception";
+  } catch (const core::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("self-intersect"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Tetrahedralize, RefusesEmptySurface) {
+  EXPECT_THROW(construct::tetrahedralize(core::TriMesh{}), core::InputError);
+}
+
+// --- labeling --------------------------------------------------------------------------------
+
+TEST(Labeling, CubeFacesGetTheirAxes) {
+  const core::TriMesh cube = test::make_box(1.0, 2.0, 3.0, 3);
+  const auto lab = construct::graph_cut_labeling(cube);
+  for (int t = 0; t < cube.num_cells(); ++t) {
+    const auto& c = cube.cells[t];
+    const core::Vec3 n = (cube.points[c[1]] - cube.points[c[0]]).cross(cube.points[c[2]] - cube.points[c[0]]).normalized();
+    EXPECT_NEAR(n.dot(construct::label_direction(lab.labels[t])), 1.0, 1e-12);
+  }
+  EXPECT_NEAR(construct::labeling_fidelity(cube, lab.labels), 0.0, 1e-12);
+  const auto v = test::validate_labeling(cube, lab.labels);
+  EXPECT_TRUE(v.valid());
+  EXPECT_EQ(v.charts, 6);
+  EXPECT_EQ(v.corners, 8);
+}
+
+TEST(Labeling, CompactnessReducesCharts) {
+  const core::TriMesh s = test::make_sphere(1.0, 24, 48);
+  construct::LabelingOptions none;
+  none.compactness = 0.0;
+  construct::LabelingOptions strong;
+  strong.compactness = 3.0;
+  const auto a = construct::check_labeling(s, construct::graph_cut_labeling(s, none).labels);
+  const auto b = construct::check_labeling(s, construct::graph_cut_labeling(s, strong).labels);
+  EXPECT_LE(b.layout.num_charts(), a.layout.num_charts());
+  EXPECT_LT(b.layout.num_boundaries, a.layout.num_boundaries + 1);
+}
+
+TEST(Labeling, Deterministic) {
+  const core::TriMesh s = test::make_torus(2.0, 0.7, 40, 20);
+  const auto a = construct::graph_cut_labeling(s);
+  const auto b = construct::graph_cut_labeling(s);
+  EXPECT_EQ(a.labels, b.labels);
+}
+
+TEST(LabelingCheck, FindsEachKindOfDefect) {
+  const core::TriMesh cube = test::make_box(1.0, 1.0, 1.0, 4);
+  auto labels = construct::graph_cut_labeling(cube).labels;
+  ASSERT_TRUE(construct::check_labeling(cube, labels).valid());
+  // One triangle of +Z relabelled -Z: an island chart with one neighbour, opposite to it.
+  int t_top = -1;
+  for (int t = 0; t < cube.num_cells() && t_top < 0; ++t)
+    if (labels[t] == 4) t_top = t;
+  auto bad = labels;
+  bad[t_top] = 5;
+  const auto chk = construct::check_labeling(cube, bad);
+  EXPECT_FALSE(chk.valid());
+  bool few = false, opposite = false;
+  for (const auto& d : chk.defects) {
+    few |= d.kind == construct::DefectKind::TooFewNeighbors;
+    opposite |= d.kind == construct::DefectKind::OppositeNeighbors;
+    EXPECT_FALSE(d.reason.empty());
+  }
+  EXPECT_TRUE(few);
+  EXPECT_TRUE(opposite);
+  // Both validators agree.
+  EXPECT_FALSE(test::validate_labeling(cube, bad).valid());
+  EXPECT_THROW(construct::check_labeling(cube, std::vector<int>(3, 0)), core::InputError);
+}
+
+TEST(LabelingCheck, CornerJoiningTwoEqualAxesIsADefect) {
+  // A box whose +Z face's one quadrant is labelled +X: the corner of that quadrant joins
+  // +X(patch), +Z, and the real +X side through a valence-4 or repeated-axis configuration.
+  const core::TriMesh cube = test::make_box(1.0, 1.0, 1.0, 2);
+  auto labels = construct::graph_cut_labeling(cube).labels;
+  for (int t = 0; t < cube.num_cells(); ++t) {
+    const auto& c = cube.cells[t];
+    const core::Vec3 ctr = (cube.points[c[0]] + cube.points[c[1]] + cube.points[c[2]]) / 3;
+    if (labels[t] == 4 && ctr.x() < 0.5 && ctr.y() < 0.5) labels[t] = 0;
+  }
+  const auto chk = construct::check_labeling(cube, labels);
+  bool corner = false;
+  for (const auto& d : chk.defects) corner |= d.kind == construct::DefectKind::InvalidCorner;
+  EXPECT_TRUE(corner);
+  EXPECT_FALSE(test::validate_labeling(cube, labels).valid());
+}
+
+// --- the whole pipeline on shapes built in code ---------------------------------------------
+
+TEST(Pipeline, Cube) {
+  const auto r = construct::tetrahedralize(test::make_box(2.0, 1.0, 1.0, 3));
+  expect_valid(run_pipeline(r.mesh), "cube");
+}
+
+TEST(Pipeline, Sphere) {
+  const auto r = construct::tetrahedralize(test::make_sphere(1.0, 20, 40));
+  const auto p = run_pipeline(r.mesh);
+  expect_valid(p, "sphere");
+  EXPECT_GE(p.repair.check.layout.num_charts(), 6);
+}
+
+TEST(Pipeline, Torus) {
+  const auto r = construct::tetrahedralize(test::make_torus(2.0, 0.7, 48, 24));
+  const auto p = run_pipeline(r.mesh);
+  expect_valid(p, "torus");
+  EXPECT_EQ(core::analyze_surface(p.surface).genus, 1);
+}
+
+TEST(Pipeline, RepairFixesAPerturbedLabeling) {
+  const core::TriMesh s = test::make_sphere(1.0, 16, 32);
+  auto labels = construct::graph_cut_labeling(s).labels;
+  // Scatter isolated wrong labels: islands, opposite neighbours, bad corners.
+  for (int t = 0; t < s.num_cells(); t += 37) labels[t] = construct::opposite_label(labels[t]);
+  ASSERT_FALSE(test::validate_labeling(s, labels).valid());
+  const auto r = construct::repair_labeling(s, labels);
+  EXPECT_GT(r.initial_defects, 0);
+  EXPECT_TRUE(test::validate_labeling(s, r.labels).valid());
+  EXPECT_TRUE(r.valid());
+}
+
+// --- shared models ----------------------------------------------------------------------------
+
+const fs::path kData = POLYCUBE_DATA_DIR;
+
+TEST(Models, Torus) { run_model(kData / "surface/torus.obj"); }
+TEST(Models, ThreeHoles) { run_model(kData / "surface/3holes.obj"); }
+TEST(Models, CubeMinusSphere) { run_model(kData / "surface/cube_minus_sphere.obj"); }
+TEST(Models, Fandisk) { run_model(kData / "surface/fandisk.obj"); }
+TEST(Models, TetB0) { run_model(kData / "tet/B0.mesh"); }
+TEST(Models, TetSphere) { run_model(kData / "tet/sphere.mesh"); }
+TEST(Models, TetCup) { run_model(kData / "tet/cup.mesh"); }
+
+}  // namespace
+}  // namespace polycube

@@ -1,0 +1,130 @@
+#pragma once
+//! \file fixtures.h
+//! \brief Tiny meshes built in code for the core tests.
+
+#include "core/types.h"
+
+#include <Eigen/Geometry>
+
+#include <array>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <utility>
+
+namespace polycube::test {
+
+using core::Vec3;
+
+//! Structured nx x ny x nz hex grid of unit cells, vertex (i,j,k) = i + (nx+1)(j + (ny+1)k).
+inline core::HexMesh hex_grid(int nx, int ny, int nz, double h = 1.0) {
+  core::HexMesh m;
+  auto id = [&](int i, int j, int k) { return i + (nx + 1) * (j + (ny + 1) * k); };
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) m.points.emplace_back(h * i, h * j, h * k);
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        m.cells.push_back({id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
+                           id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1),
+                           id(i, j + 1, k + 1)});
+  return m;
+}
+
+inline double tet_volume(const core::TetMesh& m, int c) {
+  const auto& t = m.cells[c];
+  const Vec3& p0 = m.points[t[0]];
+  return (m.points[t[1]] - p0).dot((m.points[t[2]] - p0).cross(m.points[t[3]] - p0)) / 6.0;
+}
+
+//! Split every hex into 6 tets around its 0-6 diagonal (conforming for a structured grid);
+//! tets are made positive by swapping two vertices when needed.
+inline core::TetMesh tetrahedralize(const core::HexMesh& h) {
+  static constexpr std::array<std::array<int, 4>, 6> kSplit{
+      {{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6}, {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}}};
+  core::TetMesh t;
+  t.points = h.points;
+  for (const auto& c : h.cells)
+    for (const auto& s : kSplit) {
+      t.cells.push_back({c[s[0]], c[s[1]], c[s[2]], c[s[3]]});
+      if (tet_volume(t, t.num_cells() - 1) < 0) std::swap(t.cells.back()[2], t.cells.back()[3]);
+    }
+  return t;
+}
+
+//! Torus surface: nu x nv grid of quads (outward), major radius R, minor radius r.
+inline core::QuadMesh torus_quads(int nu, int nv, double R = 2.0, double r = 0.7) {
+  core::QuadMesh m;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const double u = 2 * std::numbers::pi * i / nu;
+      const double v = 2 * std::numbers::pi * j / nv;
+      m.points.emplace_back((R + r * std::cos(v)) * std::cos(u),
+                            (R + r * std::cos(v)) * std::sin(u), r * std::sin(v));
+    }
+  auto id = [&](int i, int j) { return ((i + nu) % nu) * nv + (j + nv) % nv; };
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j)
+      m.cells.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+  return m;
+}
+
+//! Split quads 0-1-2, 0-2-3.
+inline core::TriMesh split_quads(const core::QuadMesh& q) {
+  core::TriMesh t;
+  t.points = q.points;
+  for (const auto& c : q.cells) {
+    t.cells.push_back({c[0], c[1], c[2]});
+    t.cells.push_back({c[0], c[2], c[3]});
+  }
+  return t;
+}
+
+//! Octahedron (outward), optionally subdivided `levels` times (1:4) and projected to the unit
+//! sphere.
+inline core::TriMesh sphere(int levels) {
+  core::TriMesh m;
+  m.points = {Vec3(1, 0, 0),  Vec3(-1, 0, 0), Vec3(0, 1, 0),
+              Vec3(0, -1, 0), Vec3(0, 0, 1),  Vec3(0, 0, -1)};
+  m.cells = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+             {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (int l = 0; l < levels; ++l) {
+    std::map<std::pair<int, int>, int> mid;
+    auto midpoint = [&](int a, int b) {
+      const auto key = std::minmax(a, b);
+      auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      m.points.push_back((0.5 * (m.points[a] + m.points[b])).normalized());
+      const int id = m.num_points() - 1;
+      mid.emplace(key, id);
+      return id;
+    };
+    std::vector<core::Tri> next;
+    for (const auto& c : m.cells) {
+      const int ab = midpoint(c[0], c[1]), bc = midpoint(c[1], c[2]), ca = midpoint(c[2], c[0]);
+      next.push_back({c[0], ab, ca});
+      next.push_back({ab, c[1], bc});
+      next.push_back({ca, bc, c[2]});
+      next.push_back({ab, bc, ca});
+    }
+    m.cells = std::move(next);
+  }
+  return m;
+}
+
+//! Flat n x n grid of triangles in the plane z = 0 (a disk, counter-clockwise seen from +z).
+inline core::TriMesh tri_grid(int n) {
+  core::TriMesh m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) m.points.emplace_back(i, j, 0.0);
+  auto id = [&](int i, int j) { return i + (n + 1) * j; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      m.cells.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.cells.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return m;
+}
+
+}  // namespace polycube::test
