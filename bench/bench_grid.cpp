@@ -82,8 +82,9 @@ int main(int argc, char** argv) {
   const bool json = argc > 1 && std::string(argv[1]) == "--json";
   // ~50k tets each: the L has 3 r^3 cubes of 6 tets, the box 2r x 2r x r cubes
   const auto l = test::l_shape(14, bend);
-  const auto box = test::make_grid_map(test::uniform(-1, 1, 30), test::uniform(-1, 1, 30), test::uniform(0, 1, 10),
-                                       [](const Vec3&) { return true; }, disc);
+  const auto box = test::make_grid_map(
+      test::uniform(-1, 1, 30), test::uniform(-1, 1, 30), test::uniform(0, 1, 10),
+      [](const Vec3&) { return true; }, disc);
   for (const auto* m : {&l.map, &box.map}) structure::validate_map(*m);
   std::vector<Row> rows;
   for (int target : {50'000, 1'000'000}) {
@@ -93,18 +94,26 @@ int main(int argc, char** argv) {
   if (json) {
     nlohmann::json j = nlohmann::json::array();
     for (const Row& r : rows)
-      j.push_back({{"model", r.model}, {"tets", r.tets}, {"target_hexes", r.target}, {"scale", r.scale},
-                   {"hexes", r.hexes}, {"lattice_points", r.points}, {"seconds_locate", r.locate},
-                   {"seconds_total", r.total}, {"points_per_second", r.points_per_second},
-                   {"points_failed", r.failed}, {"inverted_model_hexes", r.inverted}});
+      j.push_back({{"model", r.model},
+                   {"tets", r.tets},
+                   {"target_hexes", r.target},
+                   {"scale", r.scale},
+                   {"hexes", r.hexes},
+                   {"lattice_points", r.points},
+                   {"seconds_locate", r.locate},
+                   {"seconds_total", r.total},
+                   {"points_per_second", r.points_per_second},
+                   {"points_failed", r.failed},
+                   {"inverted_model_hexes", r.inverted}});
     std::cout << j.dump(2) << '\n';
     return 0;
   }
   std::printf("gridding, median of %d runs (locate = locate + map every lattice point)\n", kRuns);
-  std::printf("%-16s %7s %8s %9s %9s %10s %10s %12s %7s %9s\n", "model", "tets", "scale", "hexes", "points",
-              "locate s", "total s", "points/s", "failed", "inverted");
+  std::printf("%-16s %7s %8s %9s %9s %10s %10s %12s %7s %9s\n", "model", "tets", "scale", "hexes",
+              "points", "locate s", "total s", "points/s", "failed", "inverted");
   for (const Row& r : rows)
-    std::printf("%-16s %7d %8.3f %9d %9d %10.3f %10.3f %12.3g %7d %9d\n", r.model.c_str(), r.tets, r.scale, r.hexes,
-                r.points, r.locate, r.total, r.points_per_second, r.failed, r.inverted);
+    std::printf("%-16s %7d %8.3f %9d %9d %10.3f %10.3f %12.3g %7d %9d\n", r.model.c_str(), r.tets,
+                r.scale, r.hexes, r.points, r.locate, r.total, r.points_per_second, r.failed,
+                r.inverted);
   return 0;
 }

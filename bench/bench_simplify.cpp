@@ -1,11 +1,11 @@
 //! Benchmark of polycube simplification (issue 7): pairing + alignment + finalization of the
 //! structure (the issue's goal: under 0.25 s per model, median of 3), and separately the tet
 //! fitting/untangling, with #D and #dom before/after. Models: polycubes built in code (the
-//! tests' comb and C-with-bump, and a staircase "city" of 8x8 towers with perturbed heights)
+//! tests' comb and C-with-bump, and "cities" of n x n towers with perturbed heights)
 //! and every map folder given on the command line (holding model.mesh and polycube.mesh, e.g.
 //! `polycube construct` outputs).
 //!
-//! usage: bench_simplify [--json] [--no-fit] [MAP_DIR...]
+//! usage: bench_simplify [--json] [--no-fit] [--no-exterior-rule] [MAP_DIR...]
 #include "io/polycube_map_io.h"
 #include "simplify/simplify.h"
 #include "structure/structure.h"
@@ -28,36 +28,31 @@ using namespace polycube;
 using Clock = std::chrono::steady_clock;
 constexpr int kRuns = 3;
 
-//! 8x8 towers over a base, integer heights 1..4 non-increasing in x and y (a staircase in two
-//! directions, so towers never touch along an edge only), each top perturbed by up to ±0.15.
-core::PolycubeMap city() {
-  std::mt19937 rng(11);
+//! n x n towers over a base, top of tower (i, j) = 1 + min(a_i, b_j) with integer a, b in 1..4
+//! perturbed by up to ±0.15 (a min of per-row and per-column heights never makes two towers
+//! touch along an edge only, so the polycube is manifold); tower widths perturbed too.
+core::PolycubeMap city(int n, unsigned seed) {
+  std::mt19937 rng(seed);
   std::uniform_int_distribution<int> h(1, 4);
   std::uniform_real_distribution<double> jitter(-0.15, 0.15);
-  const int n = 8;
-  std::vector<double> gx, gy;
+  std::vector<double> gx, gy, a(n), b(n);
   for (int i = 0; i <= n; ++i) {
-    gx.push_back(i + (i > 0 && i < n ? jitter(rng) * 0.5 : 0.0));
-    gy.push_back(i + (i > 0 && i < n ? jitter(rng) * 0.5 : 0.0));
+    gx.push_back(i + (i > 0 && i < n ? 0.5 * jitter(rng) : 0.0));
+    gy.push_back(i + (i > 0 && i < n ? 0.5 * jitter(rng) : 0.0));
   }
-  std::vector<int> height(n * n);
-  for (auto& x : height) x = h(rng);
-  // z levels: base [0,1], then per tower its own perturbed top; the grid holds every level
-  std::vector<double> tops(n * n);
+  for (int i = 0; i < n; ++i) {
+    a[i] = h(rng) + jitter(rng);
+    b[i] = h(rng) + jitter(rng);
+  }
   std::vector<double> gz{0.0, 1.0};
-  for (int k = 0; k < n * n; ++k) {
-    tops[k] = 1.0 + height[k] + jitter(rng);
+  for (int i = 0; i < n; ++i) {
+    gz.push_back(1.0 + a[i]);
+    gz.push_back(1.0 + b[i]);
   }
-  for (int j = n - 1; j >= 0; --j)  // non-increasing tops in x and y
-    for (int i = n - 1; i >= 0; --i) {
-      if (i + 1 < n) tops[j * n + i] = std::max(tops[j * n + i], tops[j * n + i + 1]);
-      if (j + 1 < n) tops[j * n + i] = std::max(tops[j * n + i], tops[(j + 1) * n + i]);
-    }
-  gz.insert(gz.end(), tops.begin(), tops.end());
   std::sort(gz.begin(), gz.end());
   gz.erase(std::unique(gz.begin(), gz.end()), gz.end());
-  return test::grid_polycube(gx, gy, gz, [&](int i, int j, int k) {
-    return gz[k + 1] <= tops[j * n + i] + 1e-12;
+  return test::grid_polycube(gx, gy, gz, [&, n](int i, int j, int k) {
+    return gz[k + 1] <= 1.0 + std::min(a[i], b[j]) + 1e-12;
   });
 }
 
@@ -70,15 +65,18 @@ struct Model {
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool json = false, fit = true;
+  bool json = false, fit = true, exterior = true;
   std::vector<Model> models;
   models.push_back({"comb", test::comb(0.1), 10.0});
   models.push_back({"c-with-bump", test::c_with_bump(0.1), 10.0});
-  models.push_back({"city-8x8", city(), 0.0});
+  models.push_back({"city-8x8", city(8, 11), 0.0});
+  models.push_back({"city-16x16", city(16, 12), 0.0});
+  models.push_back({"city-24x24", city(24, 13), 0.0});
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--json") { json = true; continue; }
     if (a == "--no-fit") { fit = false; continue; }
+    if (a == "--no-exterior-rule") { exterior = false; continue; }
     const std::filesystem::path dir(a);
     try {
       models.push_back({dir.filename().string(), io::read_polycube_map(dir / "model.mesh", dir / "polycube.mesh"), 0.0});
@@ -94,6 +92,7 @@ int main(int argc, char** argv) {
     const auto s = structure::extract_structure(m.map);
     simplify::AlignOptions ao;
     ao.scale = m.scale;
+    ao.exterior_rule = exterior;
     std::vector<double> times;
     simplify::AlignResult r;
     for (int k = 0; k < kRuns; ++k) {
@@ -116,7 +115,14 @@ int main(int argc, char** argv) {
                    {"planes_after", r.planes_after}, {"hex_domains_before", full.before.hex_domains},
                    {"hex_domains_after", full.after.hex_domains}, {"quad_domains_before", full.before.quad_domains},
                    {"quad_domains_after", full.after.quad_domains}, {"certified", full.fit.certified},
-                   {"structure_seconds_median", median}, {"fit_seconds", fit_s}, {"lp_solves", r.lp_solves},
+                   {"structure_seconds_median", median},
+                   {"seconds_constraints", r.seconds_system}, {"seconds_pairing", r.seconds_pairing},
+                   {"seconds_alignment", r.seconds_solve}, {"seconds_finalization", r.seconds_finalize},
+                   {"iteration_candidates", [&] { std::vector<int> c; for (const auto& it : r.iterations) c.push_back(it.candidates); return c; }()},
+                   {"iteration_aligned", [&] { std::vector<int> c; for (const auto& it : r.iterations) c.push_back(it.aligned); return c; }()},
+                   {"infeasible_first", r.iterations.empty() ? 0 : r.iterations[0].pairing.infeasible},
+                   {"exterior_first", r.iterations.empty() ? 0 : r.iterations[0].pairing.exterior},
+                   {"delaunay_first", r.iterations.empty() ? 0 : r.iterations[0].pairing.delaunay}, {"fit_seconds", fit_s}, {"lp_solves", r.lp_solves},
                    {"scale", r.scale}});
     if (!json)
       std::printf("%-14s %7d %8zu %5zu %7d %7d %6d %8d %8d %8d %5.0f%% %5s %9.4f %9.3f %5d\n", m.name.c_str(),

@@ -82,6 +82,7 @@ void run_construct(const ConstructCliOptions& o) {
       {"refine", {{"split_edges", r.refine.split_edges}, {"split_tets", r.refine.split_tets}}},
       {"split_boundary_triangles", r.split_triangles},
       {"split_boundary_edges", r.split_edges},
+      {"refined_edges", r.refined_edges},
       {"boundary_triangles", r.boundary.size()},
       {"charts", r.charts},
       {"corners", r.corners},

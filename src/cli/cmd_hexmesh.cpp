@@ -21,8 +21,8 @@ struct MeshOptions {
   std::string model;
   std::string polycube;
   std::string output;
-  std::string polycube_out;   //!< optional polycube-space twin of the output
-  bool allow_defects = false; //!< write the mesh even when snapping broke the polycube
+  std::string polycube_out;    //!< optional polycube-space twin of the output
+  bool allow_defects = false;  //!< write the mesh even when snapping broke the polycube
   mesh::GridOptions grid;
   structure::ValidateOptions validate;
 };
@@ -60,21 +60,25 @@ void run_mesh(const MeshOptions& o, bool hex) {
 
   // refuse a broken mesh unless asked
   if (!r.snapping.ok() && !o.allow_defects)
-    throw core::GeometryError(fmt::format("naive snapping at scale {:.6g} breaks the polycube: {} (choose another "
-                                          "scale, simplify the polycube first, or pass --allow-defects)",
-                                          r.scale, r.snapping.summary()));
+    throw core::GeometryError(
+        fmt::format("naive snapping at scale {:.6g} breaks the polycube: {} (choose another "
+                    "scale, simplify the polycube first, or pass --allow-defects)",
+                    r.scale, r.snapping.summary()));
   if (r.points_failed > 0 && !o.allow_defects)
-    throw core::GeometryError(fmt::format("{} lattice points lie outside the polycube (by up to {:.3g}); pass "
-                                          "--allow-defects to write the mesh anyway",
-                                          r.points_failed, r.max_failed_distance));
+    throw core::GeometryError(
+        fmt::format("{} lattice points lie outside the polycube (by up to {:.3g}); pass "
+                    "--allow-defects to write the mesh anyway",
+                    r.points_failed, r.max_failed_distance));
   if (hex) {
     io::write_mesh(o.output, core::to_mesh_data(r.hex_model));
     if (!o.polycube_out.empty()) io::write_mesh(o.polycube_out, core::to_mesh_data(r.hex_polycube));
   } else {
     io::write_mesh(o.output, core::to_mesh_data(r.quad_model));
-    if (!o.polycube_out.empty()) io::write_mesh(o.polycube_out, core::to_mesh_data(r.quad_polycube));
+    if (!o.polycube_out.empty())
+      io::write_mesh(o.polycube_out, core::to_mesh_data(r.quad_polycube));
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   const int points = static_cast<int>(r.hex_polycube.points.size());
   nlohmann::json j = {{"output", o.output},
@@ -92,52 +96,65 @@ void run_mesh(const MeshOptions& o, bool hex) {
                       {"seconds", seconds}};
   if (hex) j["inverted_model_hexes"] = r.inverted_model_hexes;
   if (!o.polycube_out.empty()) j["polycube_output"] = o.polycube_out;
-  std::string text = fmt::format("scale {:.6g}: lattice [{}, {}] x [{}, {}] x [{}, {}]\n", r.scale, r.lattice_min[0],
-                                 r.lattice_max[0], r.lattice_min[1], r.lattice_max[1], r.lattice_min[2], r.lattice_max[2]);
+  std::string text = fmt::format("scale {:.6g}: lattice [{}, {}] x [{}, {}] x [{}, {}]\n", r.scale,
+                                 r.lattice_min[0], r.lattice_max[0], r.lattice_min[1],
+                                 r.lattice_max[1], r.lattice_min[2], r.lattice_max[2]);
   if (hex)
-    text += fmt::format("hexes {}, boundary quads {}, lattice points {}\n", r.hex_polycube.cells.size(),
-                        r.quad_polycube.cells.size(), points);
+    text += fmt::format("hexes {}, boundary quads {}, lattice points {}\n",
+                        r.hex_polycube.cells.size(), r.quad_polycube.cells.size(), points);
   else
-    text += fmt::format("quads {}, lattice points on the surface {}\n", r.quad_polycube.cells.size(),
-                        r.quad_polycube.points.size());
+    text += fmt::format("quads {}, lattice points on the surface {}\n",
+                        r.quad_polycube.cells.size(), r.quad_polycube.points.size());
   text += fmt::format("points located {}, failed {}\n", r.points_located, r.points_failed);
   text += fmt::format("snapping: {}{}\n",
-                      r.snapping.needed ? fmt::format("levels moved by up to {:.3g} ({} corners moved), ",
-                                                      r.snapping.max_displacement, r.snapping.corners_moved)
-                                        : std::string("corners already on the lattice, "),
+                      r.snapping.needed
+                          ? fmt::format("levels moved by up to {:.3g} ({} corners moved), ",
+                                        r.snapping.max_displacement, r.snapping.corners_moved)
+                          : std::string("corners already on the lattice, "),
                       r.snapping.summary());
   if (hex && r.inverted_model_hexes > 0)
-    text += fmt::format("inverted hexes in model space: {} (optimize the mesh before use)\n", r.inverted_model_hexes);
-  text += fmt::format("wrote {}{}\n", o.output, o.polycube_out.empty() ? "" : " and " + o.polycube_out);
-  text += fmt::format("time: locate {:.3f} s, grid {:.3f} s, total {:.3f} s\n", r.seconds_locate, r.seconds_total, seconds);
+    text += fmt::format("inverted hexes in model space: {} (optimize the mesh before use)\n",
+                        r.inverted_model_hexes);
+  text +=
+      fmt::format("wrote {}{}\n", o.output, o.polycube_out.empty() ? "" : " and " + o.polycube_out);
+  text += fmt::format("time: locate {:.3f} s, grid {:.3f} s, total {:.3f} s\n", r.seconds_locate,
+                      r.seconds_total, seconds);
   print_result(j, text);
 }
 
-CLI::App* add_common(CLI::App& app, const char* name, const char* help, const std::shared_ptr<MeshOptions>& opts,
-                     bool hex) {
+CLI::App* add_common(CLI::App& app, const char* name, const char* help,
+                     const std::shared_ptr<MeshOptions>& opts, bool hex) {
   CLI::App* sub = app.add_subcommand(name, help);
-  sub->add_option("model", opts->model, "Model-space tet mesh of the map (.mesh)")->required()->check(CLI::ExistingFile);
+  sub->add_option("model", opts->model, "Model-space tet mesh of the map (.mesh)")
+      ->required()
+      ->check(CLI::ExistingFile);
   sub->add_option("polycube", opts->polycube, "Polycube-space tet mesh with the same tets (.mesh)")
       ->required()
       ->check(CLI::ExistingFile);
   sub->add_option("-o,--output", opts->output,
-                  hex ? "Hex mesh in model space (.mesh .vtk .msh)" : "Quad mesh in model space (.obj .off .ply .mesh .vtk)")
+                  hex ? "Hex mesh in model space (.mesh .vtk .msh)"
+                      : "Quad mesh in model space (.obj .off .ply .mesh .vtk)")
       ->required();
-  sub->add_option("--polycube-out", opts->polycube_out, "Also write the polycube-space twin (lattice coordinates)");
+  sub->add_option("--polycube-out", opts->polycube_out,
+                  "Also write the polycube-space twin (lattice coordinates)");
   auto* scale = sub->add_option("--scale", opts->grid.scale, "Lattice cells per polycube unit")
                     ->check(CLI::PositiveNumber);
-  auto* hexes = sub->add_option("--hexes", opts->grid.target_hexes, "Choose the scale for about this many hexes")
+  auto* hexes = sub->add_option("--hexes", opts->grid.target_hexes,
+                                "Choose the scale for about this many hexes")
                     ->check(CLI::PositiveNumber);
   scale->excludes(hexes);
   if (!hex) {
-    auto* quads = sub->add_option("--quads", opts->grid.target_quads, "Choose the scale for about this many quads")
+    auto* quads = sub->add_option("--quads", opts->grid.target_quads,
+                                  "Choose the scale for about this many quads")
                       ->check(CLI::PositiveNumber);
     quads->excludes(scale)->excludes(hexes);
   }
-  sub->add_flag("--allow-defects", opts->allow_defects,
-                "Write the mesh even when naive snapping breaks the polycube (merged corners, ...)");
+  sub->add_flag(
+      "--allow-defects", opts->allow_defects,
+      "Write the mesh even when naive snapping breaks the polycube (merged corners, ...)");
   sub->add_option("--axis-tolerance", opts->validate.axis_tolerance,
-                  "Axis-alignment tolerance of polycube boundary triangles, relative to the bounding-box diagonal")
+                  "Axis-alignment tolerance of polycube boundary triangles, relative to the "
+                  "bounding-box diagonal")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   return sub;
@@ -147,15 +164,17 @@ CLI::App* add_common(CLI::App& app, const char* name, const char* help, const st
 
 void register_hexmesh(CLI::App& app) {
   auto opts = std::make_shared<MeshOptions>();
-  CLI::App* sub = add_common(app, "hexmesh",
-                             "Grid a polycube map into a hex mesh: scale, integer lattice, map back (scale 1 by default)",
-                             opts, true);
+  CLI::App* sub = add_common(
+      app, "hexmesh",
+      "Grid a polycube map into a hex mesh: scale, integer lattice, map back (scale 1 by default)",
+      opts, true);
   sub->callback([opts] { run_mesh(*opts, true); });
 }
 
 void register_quadmesh(CLI::App& app) {
   auto opts = std::make_shared<MeshOptions>();
-  CLI::App* sub = add_common(app, "quadmesh", "Grid a polycube map's surface into a quad mesh (scale 1 by default)",
+  CLI::App* sub = add_common(app, "quadmesh",
+                             "Grid a polycube map's surface into a quad mesh (scale 1 by default)",
                              opts, false);
   sub->callback([opts] { run_mesh(*opts, false); });
 }

@@ -35,7 +35,8 @@ void print_list() {
 void register_sample(CLI::App& app) {
   auto opts = std::make_shared<SampleCliOptions>();
   CLI::App* sub = app.add_subcommand(
-      "sample", "Write a built-in sample shape (closed CAD-like surfaces, mm units); --list names them");
+      "sample",
+      "Write a built-in sample shape (closed CAD-like surfaces, mm units); --list names them");
   sub->add_option("name", opts->name, "Sample name (see --list)");
   sub->add_option("-o,--output", opts->output,
                   "Output surface file: .obj .off .stl .ply .mesh (written atomically)");
@@ -66,9 +67,9 @@ void register_sample(CLI::App& app) {
                               {"vertices", mesh.num_points()},
                               {"triangles", mesh.num_cells()},
                               {"genus", genus}};
-    print_result(j, fmt::format("wrote sample {} to {}: {} vertices, {} triangles, genus {}",
-                                opts->name, opts->output, mesh.num_points(), mesh.num_cells(),
-                                genus));
+    print_result(
+        j, fmt::format("wrote sample {} to {}: {} vertices, {} triangles, genus {}", opts->name,
+                       opts->output, mesh.num_points(), mesh.num_cells(), genus));
   });
 }
 

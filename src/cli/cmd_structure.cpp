@@ -19,8 +19,8 @@ namespace {
 struct StructureOptions {
   std::string model;
   std::string polycube;
-  std::string output;             //!< optional .vtk of charts, edges and corners
-  std::string space = "polycube"; //!< where the .vtk is drawn: polycube or model
+  std::string output;              //!< optional .vtk of charts, edges and corners
+  std::string space = "polycube";  //!< where the .vtk is drawn: polycube or model
   structure::ValidateOptions validate;
 };
 
@@ -53,9 +53,9 @@ void run_structure(const StructureOptions& o) {
       "corners  {}\n"
       "faces    {} ({} with holes, {} holes)\n",
       map.num_vertices(), map.num_tets(), s.triangles.size(), s.charts.size(), charts_per_label[0],
-      charts_per_label[1], charts_per_label[2], charts_per_label[3], charts_per_label[4], charts_per_label[5],
-      s.edges.size(), s.num_convex_edges(), s.num_concave_edges(), s.corners.size(), s.faces.size(),
-      s.num_faces_with_holes(), holes);
+      charts_per_label[1], charts_per_label[2], charts_per_label[3], charts_per_label[4],
+      charts_per_label[5], s.edges.size(), s.num_convex_edges(), s.num_concave_edges(),
+      s.corners.size(), s.faces.size(), s.num_faces_with_holes(), holes);
   if (!o.output.empty()) {
     structure::write_structure_vtk(o.output, s, o.space == "model" ? map.model : map.polycube);
     j["output"] = o.output;
@@ -68,18 +68,23 @@ void run_structure(const StructureOptions& o) {
 
 void register_structure(CLI::App& app) {
   auto opts = std::make_shared<StructureOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "structure", "Validate a polycube map and print its structure: charts, edges (convex/concave), corners, faces");
-  sub->add_option("model", opts->model, "Model-space tet mesh of the map (.mesh)")->required()->check(CLI::ExistingFile);
+  CLI::App* sub = app.add_subcommand("structure",
+                                     "Validate a polycube map and print its structure: charts, "
+                                     "edges (convex/concave), corners, faces");
+  sub->add_option("model", opts->model, "Model-space tet mesh of the map (.mesh)")
+      ->required()
+      ->check(CLI::ExistingFile);
   sub->add_option("polycube", opts->polycube, "Polycube-space tet mesh with the same tets (.mesh)")
       ->required()
       ->check(CLI::ExistingFile);
-  sub->add_option("-o,--output", opts->output, "Write the charts, edges and corners as a legacy VTK file (.vtk)");
+  sub->add_option("-o,--output", opts->output,
+                  "Write the charts, edges and corners as a legacy VTK file (.vtk)");
   sub->add_option("--space", opts->space, "Draw the structure in polycube or model space")
       ->check(CLI::IsMember({"polycube", "model"}))
       ->capture_default_str();
   sub->add_option("--axis-tolerance", opts->validate.axis_tolerance,
-                  "Axis-alignment tolerance of polycube boundary triangles, relative to the bounding-box diagonal")
+                  "Axis-alignment tolerance of polycube boundary triangles, relative to the "
+                  "bounding-box diagonal")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   sub->callback([opts] { run_structure(*opts); });

@@ -34,48 +34,68 @@ ConstructResult construct_from_prepared(const core::TetMesh& mesh, const Constru
   const auto t0 = Clock::now();
   ConstructResult res;
 
-  // Labeling and repair on the boundary surface.
+  // Labeling, repair, deformation; when the map cannot be untangled, revisit the labeling with
+  // other compactness weights (each attempt is a different valid labeling).
   const core::TetBoundary bnd = core::boundary(mesh);
-  auto t = Clock::now();
-  const LabelingResult lab = graph_cut_labeling(bnd.surface, o.labeling);
-  res.seconds.label = since(t);
-  t = Clock::now();
-  RepairOptions ropt = o.repair;
-  ropt.energy = o.labeling;
-  const RepairResult rep = repair_labeling(bnd.surface, lab.labels, ropt);
-  res.seconds.repair = since(t);
-  res.repair_moves = rep.moves;
-  if (!rep.valid())
-    throw core::SolverError(fmt::format("no valid polycube labeling reached: {} defect(s) remain: {}",
-                                        rep.check.defects.size(), defects_text(rep.check)));
-  log.info("construct: labeling valid ({} charts) in {:.2f} s + repair {:.2f} s", rep.check.layout.num_charts(),
-           res.seconds.label, res.seconds.repair);
-
-  // Deformation and untangling.
   std::vector<core::Tri> tris(bnd.surface.cells.size());
   for (std::size_t f = 0; f < tris.size(); ++f) {
     const auto& s = bnd.surface.cells[f];
     tris[f] = {bnd.vertex_map[s[0]], bnd.vertex_map[s[1]], bnd.vertex_map[s[2]]};
   }
-  const DeformResult def = deform_to_polycube(mesh, tris, rep.labels, o.deform);
-  res.seconds.deform = def.seconds_linear;
-  res.seconds.untangle = def.seconds_untangle;
+  std::vector<double> factors{1.0};
+  for (double f : o.retry_compactness_factors) factors.push_back(f);
+  DeformResult def;
+  std::string failures;
+  bool done = false;
+  for (std::size_t attempt = 0; attempt < factors.size() && !done; ++attempt) {
+    LabelingOptions lopt = o.labeling;
+    lopt.compactness *= factors[attempt];
+    auto t = Clock::now();
+    const LabelingResult lab = graph_cut_labeling(bnd.surface, lopt);
+    res.seconds.label += since(t);
+    t = Clock::now();
+    RepairOptions ropt = o.repair;
+    ropt.energy = lopt;
+    const RepairResult rep = repair_labeling(bnd.surface, lab.labels, ropt);
+    res.seconds.repair += since(t);
+    res.repair_moves = rep.moves;
+    if (!rep.valid()) {
+      failures += fmt::format("{}compactness {:.3g}: no valid labeling ({} defect(s): {})", failures.empty() ? "" : "; ",
+                              lopt.compactness, rep.check.defects.size(), defects_text(rep.check, 2));
+      continue;
+    }
+    log.info("construct: labeling valid ({} charts, compactness {:.3g}) in {:.2f} s + repair {:.2f} s",
+             rep.check.layout.num_charts(), lopt.compactness, res.seconds.label, res.seconds.repair);
+    def = deform_to_polycube(mesh, tris, rep.labels, o.deform);
+    res.seconds.deform += def.seconds_linear;
+    res.seconds.untangle += def.seconds_untangle;
+    log.info("construct: deformation {:.2f} s ({} inverted after the linear step), untangling {:.2f} s "
+             "({} iterations, {} Newton steps, min det {:.3g}, {} inverted)",
+             def.seconds_linear, def.inverted_after_linear, def.seconds_untangle, def.untangle.iterations,
+             def.untangle.newton_steps, def.untangle.min_det, def.untangle.inverted_after);
+    done = def.untangle.untangled;
+    if (!done)
+      failures += fmt::format("{}compactness {:.3g}: {} tets stay inverted", failures.empty() ? "" : "; ",
+                              lopt.compactness, def.untangle.inverted_after);
+  }
+  if (def.polycube.empty())
+    throw core::SolverError("no valid polycube labeling reached: " + failures);
+  if (!done) log.warn("construct: every attempt left inverted tets ({})", failures);
   res.split_triangles = def.split_triangles;
   res.split_edges = def.split_edges;
+  res.refined_edges = def.refined_edges;
   res.inverted_after_linear = def.inverted_after_linear;
   res.untangle = def.untangle;
-  log.info("construct: deformation {:.2f} s ({} inverted after the linear step), untangling {:.2f} s "
-           "({} iterations, {} Newton steps, min det {:.3g}, {} inverted)",
-           def.seconds_linear, def.inverted_after_linear, def.seconds_untangle, def.untangle.iterations,
-           def.untangle.newton_steps, def.untangle.min_det, def.untangle.inverted_after);
 
   // Certification.
-  t = Clock::now();
+  const auto t = Clock::now();
   res.map.tets = def.mesh.cells;
   res.map.model = def.mesh.points;
   res.map.polycube = def.polycube;
   res.certificate = certify_polycube_map(res.map, def.boundary, def.labels, o.certify);
-  require_certified(res.certificate);
+  if (!res.certificate.certified())
+    throw core::GeometryError("polycube map not certified: " + res.certificate.reason() +
+                              (failures.empty() ? std::string() : " (attempts: " + failures + ")"));
 
   // Boundary in core::boundary() order (the order of the written Triangles blocks).
   const core::TetBoundary fb = core::boundary(def.mesh);

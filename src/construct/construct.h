@@ -24,6 +24,9 @@ struct ConstructOptions {
   RepairOptions repair;                  //!< its `energy` is replaced by `labeling`
   DeformOptions deform;
   CertifyOptions certify;
+  //! When the deformation leaves inverted tets, the labeling is computed again with the
+  //! compactness multiplied by each of these factors in turn (empty: no retry).
+  std::vector<double> retry_compactness_factors{2.0, 0.5};
 };
 
 //! Wall time of each stage (seconds).
@@ -47,6 +50,7 @@ struct ConstructResult {
   RefineStats refine;               //!< boundary refinement work
   int split_triangles = 0;          //!< boundary triangles split by the deformation
   int split_edges = 0;              //!< boundary edges split by the deformation
+  int refined_edges = 0;            //!< edges split by the local refinement of the untangling
   int charts = 0;                   //!< charts of the final labeling
   int corners = 0;                  //!< polycube corners
   int boundaries = 0;               //!< polycube edges (chart boundaries)

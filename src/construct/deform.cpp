@@ -199,7 +199,8 @@ std::vector<std::array<int, 2>> chord_edges(const std::vector<Tri>& tris, const 
 //! Split the edges at their midpoints (every tet and boundary triangle around each edge in
 //! two). Edges whose tets were already modified in this call are left for the next round.
 //! Returns the number of edges split.
-int split_edges(core::TetMesh& mesh, LabeledBoundary& lb, const std::vector<std::array<int, 2>>& edges) {
+int split_edges(core::TetMesh& mesh, LabeledBoundary& lb, const std::vector<std::array<int, 2>>& edges,
+                std::vector<Vec3>* other = nullptr) {
   const core::Adjacency vc = core::vertex_cells(mesh);
   std::vector<char> touched(mesh.cells.size(), 0);
   // boundary triangles by vertex
@@ -217,6 +218,7 @@ int split_edges(core::TetMesh& mesh, LabeledBoundary& lb, const std::vector<std:
     if (busy) continue;
     const int m = mesh.num_points();
     mesh.points.push_back(0.5 * (mesh.points[u] + mesh.points[v]));
+    if (other) other->push_back(0.5 * ((*other)[u] + (*other)[v]));  // exact where u, v share a coordinate
     for (int c : around) {
       // Replacing an edge end by a point inside the edge keeps the orientation.
       core::Tet second = mesh.cells[c];
@@ -337,17 +339,15 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
             e[0], e[1]));
     }
   }
-  res.boundary = lb.tris;
-  res.labels = lb.labels;
-  res.triangle_chart = cv.tri_chart;
-  res.num_charts = cv.num_charts;
-  res.num_chart_variables = cv.num_groups;
-
   // Reduction: chart coordinates first (one per group), then every free coordinate.
-  std::vector<int> var(3 * static_cast<std::size_t>(nv), -1);
-  int nvar = cv.num_groups;
-  for (std::size_t i = 0; i < var.size(); ++i) var[i] = cv.vertex_group[i] >= 0 ? cv.vertex_group[i] : nvar++;
-  const solve::LinearReduction R = solve::index_reduction(var, nvar, Eigen::VectorXd::Zero(3 * nv));
+  auto make_vars = [&](std::vector<int>& var) {
+    var.assign(3 * static_cast<std::size_t>(mesh.num_points()), -1);
+    int n = cv.num_groups;
+    for (std::size_t i = 0; i < var.size(); ++i) var[i] = cv.vertex_group[i] >= 0 ? cv.vertex_group[i] : n++;
+    return n;
+  };
+  std::vector<int> var;
+  int nvar = make_vars(var);
   Eigen::VectorXd y = Eigen::VectorXd::Zero(nvar);
   {
     std::vector<double> count(static_cast<std::size_t>(cv.num_groups), 0.0);
@@ -359,11 +359,12 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
       }
     for (int j = 0; j < cv.num_groups; ++j) y[j] /= count[j];
   }
-  const solve::TetElements el = solve::reference_elements(mesh.points, mesh.cells);
 
   // 3. As-rigid-as-possible least squares under the chart constraints: minimize
   //    sum_t w_t |J_t - R_t|² with R_t the rotation closest to the current J_t.
   if (o.arap_iterations > 0) {
+    const solve::TetElements el = solve::reference_elements(mesh.points, mesh.cells);
+    const solve::LinearReduction R = solve::index_reduction(var, nvar, Eigen::VectorXd::Zero(3 * nv));
     std::vector<Eigen::Triplet<double>> trip;
     trip.reserve(el.tets.size() * 16 * 3 / 2 + nvar);
     for (int t = 0; t < el.size(); ++t) {
@@ -406,18 +407,21 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
       y = solver.solve(rhs);
       x = R.apply(y);
     }
-  }
-  {
-    const Eigen::VectorXd x = R.apply(y);
     for (int t = 0; t < el.size(); ++t) {
       Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
       for (int i = 0; i < 4; ++i) J += x.segment<3>(3 * el.tets[t][i]) * el.gradients[t].row(i);
       res.inverted_after_linear += J.determinant() <= 0;
     }
   }
+  // Polycube positions (chart coordinates copied from their variable, hence exactly shared).
+  std::vector<Vec3> P(static_cast<std::size_t>(nv));
+  for (int v = 0; v < nv; ++v)
+    for (int d = 0; d < 3; ++d) P[v][d] = y[var[3 * static_cast<std::size_t>(v) + d]];
   res.seconds_linear = since(t_start);
 
-  // 4. Untangle, then lower the distortion, keeping the chart constraints exactly.
+  // 4. Untangle, then lower the distortion, keeping the chart constraints exactly. When some
+  //    tets stay inverted, refine locally (split every edge of those tets) and start again
+  //    from the current positions.
   const auto t_unt = Clock::now();
   solve::UntangleOptions uo;
   uo.max_iterations = o.max_iterations;
@@ -426,30 +430,55 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
   uo.initial_epsilon = o.initial_epsilon;
   uo.tolerance = o.tolerance;
   uo.min_det_target = o.min_det;
-  res.untangle = solve::untangle(el, R, y, uo);
-  res.seconds_untangle = since(t_unt);
-
-  const Eigen::VectorXd x = R.apply(y);  // chart rows are exactly their variable
-  if (!res.untangle.untangled) {
-    int listed = 0;
-    for (int t = 0; t < el.size() && listed < 8; ++t) {
+  for (int round = 0;; ++round) {
+    nvar = make_vars(var);
+    const int n_points = mesh.num_points();
+    const solve::LinearReduction R = solve::index_reduction(var, nvar, Eigen::VectorXd::Zero(3 * n_points));
+    y = Eigen::VectorXd::Zero(nvar);
+    for (int v = 0; v < n_points; ++v)
+      for (int d = 0; d < 3; ++d) y[var[3 * static_cast<std::size_t>(v) + d]] = P[v][d];
+    const solve::TetElements el = solve::reference_elements(mesh.points, mesh.cells);
+    const solve::UntangleResult ur = solve::untangle(el, R, y, uo);
+    if (round == 0) {
+      res.untangle = ur;
+    } else {  // keep the first run's "before" figures, the last run's outcome
+      res.untangle.untangled = ur.untangled;
+      res.untangle.iterations += ur.iterations;
+      res.untangle.newton_steps += ur.newton_steps;
+      res.untangle.inverted_after = ur.inverted_after;
+      res.untangle.min_det = ur.min_det;
+      res.untangle.energy = ur.energy;
+      res.untangle.epsilon = ur.epsilon;
+    }
+    for (int v = 0; v < n_points; ++v)
+      for (int d = 0; d < 3; ++d) P[v][d] = y[var[3 * static_cast<std::size_t>(v) + d]];
+    if (ur.untangled || round >= o.refine_rounds) break;
+    // Local refinement around the tets that stay inverted.
+    std::vector<std::array<int, 2>> edges;
+    for (int t = 0; t < el.size(); ++t) {
+      const auto& c = el.tets[t];
       Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
-      for (int i = 0; i < 4; ++i) J += x.segment<3>(3 * el.tets[t][i]) * el.gradients[t].row(i);
+      for (int i = 0; i < 4; ++i) J += P[c[i]] * el.gradients[t].row(i);
       if (J.determinant() > o.min_det) continue;
-      ++listed;
-      std::string desc;
-      for (int v : el.tets[t])
-        desc += fmt::format(" v{}[{} {} {}]", v, cv.vertex_group[3 * v], cv.vertex_group[3 * v + 1],
-                            cv.vertex_group[3 * v + 2]);
-      core::logger().debug("deform: tet {} stays inverted (det {:.3g}):{}", t, J.determinant(), desc);
+      for (const auto& e : core::kTetEdges) edges.push_back({std::min(c[e[0]], c[e[1]]), std::max(c[e[0]], c[e[1]])});
     }
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    const int split = split_edges(mesh, lb, edges, &P);
+    res.refined_edges += split;
+    core::logger().debug("deform: {} tets stay inverted; refinement round {} split {} edges", ur.inverted_after,
+                         round + 1, split);
+    if (split == 0) break;
+    lb = match_boundary(mesh, lb.tris, lb.labels);
+    cv = chart_variables(mesh.num_points(), lb.tris, lb.labels);
   }
-  res.polycube.resize(static_cast<std::size_t>(nv));
-  for (int v = 0; v < nv; ++v)
-    for (int d = 0; d < 3; ++d) {
-      const int j = var[3 * static_cast<std::size_t>(v) + d];
-      res.polycube[v][d] = j < cv.num_groups ? y[j] : x[3 * v + d];
-    }
+  res.seconds_untangle = since(t_unt);
+  res.boundary = lb.tris;
+  res.labels = lb.labels;
+  res.triangle_chart = cv.tri_chart;
+  res.num_charts = cv.num_charts;
+  res.num_chart_variables = cv.num_groups;
+  res.polycube = std::move(P);
   return res;
 }
 

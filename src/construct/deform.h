@@ -16,7 +16,9 @@
 //! 3. an as-rigid-as-possible least-squares solve (local rotations, one sparse factorization)
 //!    gives a first polycube;
 //! 4. the elliptic energy of Garanzha et al. 2021 (solve/untangle.h), with the model tets as
-//!    references, untangles it and then lowers the distortion while staying foldover-free.
+//!    references, untangles it and then lowers the distortion while staying foldover-free;
+//!    when tets stay inverted, the edges of those tets are split (local refinement) and the
+//!    optimization restarts from the current positions (DeformOptions::refine_rounds).
 //! The polycube coordinate of a chart vertex along the chart's axis equals the chart's unknown
 //! bit for bit.
 
@@ -40,6 +42,9 @@ struct DeformOptions {
   //! Minimum det J (relative to the model tet) that counts as untangled: a small positive
   //! margin keeps the exact certification away from round-off.
   double min_det = 1e-6;
+  //! When tets stay inverted, split the edges of those tets and optimize again, at most this
+  //! many times.
+  int refine_rounds = 1;
 };
 
 //! Result of deform_to_polycube().
@@ -53,6 +58,7 @@ struct DeformResult {
   int num_chart_variables = 0;              //!< chart coordinates after merging touching charts
   int split_triangles = 0;                  //!< boundary triangles split by step 2
   int split_edges = 0;                      //!< boundary edges split by step 2
+  int refined_edges = 0;                    //!< edges split by the local refinement of step 4
   solve::UntangleResult untangle;           //!< the elliptic optimization's report
   int inverted_after_linear = 0;            //!< tets inverted after the linear step
   double seconds_linear = 0;                //!< time of steps 1–3

@@ -43,14 +43,16 @@ PolycubeMap make_polycube_map(const TetMesh& model, const TetMesh& polycube) {
     throw InputError("polycube map: the model has " + std::to_string(model.num_points()) +
                      " vertices but the polycube has " + std::to_string(polycube.num_points()));
   if (model.num_cells() != polycube.num_cells())
-    throw InputError("polycube map: connectivity differs: the model has " + std::to_string(model.num_cells()) +
-                     " tets but the polycube has " + std::to_string(polycube.num_cells()));
+    throw InputError("polycube map: connectivity differs: the model has " +
+                     std::to_string(model.num_cells()) + " tets but the polycube has " +
+                     std::to_string(polycube.num_cells()));
   for (int t = 0; t < model.num_cells(); ++t) {
     const auto& a = model.cells[static_cast<std::size_t>(t)];
     const auto& b = polycube.cells[static_cast<std::size_t>(t)];
     if (a != b)
-      throw InputError("polycube map: connectivity differs: tet " + std::to_string(t) + " is (" + tet_string(a) +
-                       ") in the model but (" + tet_string(b) + ") in the polycube");
+      throw InputError("polycube map: connectivity differs: tet " + std::to_string(t) + " is (" +
+                       tet_string(a) + ") in the model but (" + tet_string(b) +
+                       ") in the polycube");
   }
   PolycubeMap map;
   map.tets = model.cells;
@@ -69,14 +71,16 @@ void check_map_indices(const PolycubeMap& map) {
     for (int k = 0; k < 4; ++k) {
       const int v = map.tets[static_cast<std::size_t>(t)][static_cast<std::size_t>(k)];
       if (v < 0 || v >= nv)
-        throw InputError("polycube map: tet " + std::to_string(t) + " references vertex " + std::to_string(v) +
-                         " outside [0, " + std::to_string(nv) + ")");
+        throw InputError("polycube map: tet " + std::to_string(t) + " references vertex " +
+                         std::to_string(v) + " outside [0, " + std::to_string(nv) + ")");
     }
   for (int v = 0; v < nv; ++v) {
     if (!map.model[static_cast<std::size_t>(v)].allFinite())
-      throw InputError("polycube map: model position of vertex " + std::to_string(v) + " is not finite");
+      throw InputError("polycube map: model position of vertex " + std::to_string(v) +
+                       " is not finite");
     if (!map.polycube[static_cast<std::size_t>(v)].allFinite())
-      throw InputError("polycube map: polycube position of vertex " + std::to_string(v) + " is not finite");
+      throw InputError("polycube map: polycube position of vertex " + std::to_string(v) +
+                       " is not finite");
   }
 }
 

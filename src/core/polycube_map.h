@@ -17,8 +17,8 @@ namespace polycube::core {
 
 //! One tet connectivity with model-space and polycube-space vertex positions.
 struct PolycubeMap {
-  std::vector<Tet> tets;       //!< #T tets, indices into both position arrays (orderings: elements.h)
-  std::vector<Vec3> model;     //!< #V model-space positions
+  std::vector<Tet> tets;    //!< #T tets, indices into both position arrays (orderings: elements.h)
+  std::vector<Vec3> model;  //!< #V model-space positions
   std::vector<Vec3> polycube;  //!< #V polycube-space positions (same length as model)
 
   [[nodiscard]] int num_vertices() const { return static_cast<int>(model.size()); }

@@ -79,7 +79,8 @@ class Scanner {
   [[nodiscard]] std::size_t offset() const { return pos_; }
   [[nodiscard]] std::size_t remaining() const { return data_.size() - pos_; }
   [[nodiscard]] std::string_view data() const { return data_; }
-  //! Move to a byte offset (must be a line start reached by this scanner); for mixed formats.
+  //! Move to a position saved with offset() and current_line() (to peek at a token and put it
+  //! back), or to the start of a binary body after a text header.
   void seek(std::size_t pos, long line) {
     pos_ = pos;
     line_ = line;

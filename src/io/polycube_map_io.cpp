@@ -1,7 +1,7 @@
 #include "io/polycube_map_io.h"
 
-#include "core/errors.h"
 #include "core/elements.h"
+#include "core/errors.h"
 #include "io/mesh_io.h"
 
 #include <Eigen/Geometry>
@@ -16,8 +16,8 @@ namespace polycube::io {
 namespace {
 
 std::string tet_string(const core::Tet& t) {
-  return "(" + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) + " " +
-         std::to_string(t[3]) + ")";
+  return "(" + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) +
+         " " + std::to_string(t[3]) + ")";
 }
 
 //! Faces of exactly one tet, by tet then local face, in their local (outward) order. Unlike
@@ -37,8 +37,9 @@ std::vector<core::Tri> boundary_triangles(const std::vector<core::Tet>& tets) {
       std::sort(key.begin(), key.end());
       slots.push_back({key, static_cast<int>(4 * t) + k});
     }
-  std::sort(slots.begin(), slots.end(),
-            [](const Slot& a, const Slot& b) { return a.key != b.key ? a.key < b.key : a.slot < b.slot; });
+  std::sort(slots.begin(), slots.end(), [](const Slot& a, const Slot& b) {
+    return a.key != b.key ? a.key < b.key : a.slot < b.slot;
+  });
   std::vector<int> single;
   for (std::size_t i = 0; i < slots.size();) {
     std::size_t j = i + 1;
@@ -65,18 +66,23 @@ core::PolycubeMap read_polycube_map(const std::filesystem::path& model_path,
   const core::MeshData b = read_mesh(polycube_path);
   const std::string an = model_path.string();
   const std::string bn = polycube_path.string();
-  if (a.tets.empty()) throw core::InputError(an + ": no tetrahedra (a polycube map needs a tet mesh)");
-  if (b.tets.empty()) throw core::InputError(bn + ": no tetrahedra (a polycube map needs a tet mesh)");
+  if (a.tets.empty())
+    throw core::InputError(an + ": no tetrahedra (a polycube map needs a tet mesh)");
+  if (b.tets.empty())
+    throw core::InputError(bn + ": no tetrahedra (a polycube map needs a tet mesh)");
   if (a.points.size() != b.points.size())
-    throw core::InputError("polycube map: vertex counts differ: " + std::to_string(a.points.size()) + " in " + an +
-                           " but " + std::to_string(b.points.size()) + " in " + bn);
+    throw core::InputError(
+        "polycube map: vertex counts differ: " + std::to_string(a.points.size()) + " in " + an +
+        " but " + std::to_string(b.points.size()) + " in " + bn);
   if (a.tets.size() != b.tets.size())
-    throw core::InputError("polycube map: connectivity differs: " + std::to_string(a.tets.size()) + " tets in " +
-                           an + " but " + std::to_string(b.tets.size()) + " in " + bn);
+    throw core::InputError("polycube map: connectivity differs: " + std::to_string(a.tets.size()) +
+                           " tets in " + an + " but " + std::to_string(b.tets.size()) + " in " +
+                           bn);
   for (std::size_t t = 0; t < a.tets.size(); ++t)
     if (a.tets[t] != b.tets[t])
-      throw core::InputError("polycube map: connectivity differs: tet " + std::to_string(t) + " is " +
-                             tet_string(a.tets[t]) + " in " + an + " but " + tet_string(b.tets[t]) + " in " + bn);
+      throw core::InputError("polycube map: connectivity differs: tet " + std::to_string(t) +
+                             " is " + tet_string(a.tets[t]) + " in " + an + " but " +
+                             tet_string(b.tets[t]) + " in " + bn);
   core::PolycubeMap map;
   map.tets = a.tets;
   map.model = a.points;
@@ -85,8 +91,8 @@ core::PolycubeMap read_polycube_map(const std::filesystem::path& model_path,
   return map;
 }
 
-void write_polycube_map(const std::filesystem::path& model_path, const std::filesystem::path& polycube_path,
-                        const core::PolycubeMap& map) {
+void write_polycube_map(const std::filesystem::path& model_path,
+                        const std::filesystem::path& polycube_path, const core::PolycubeMap& map) {
   core::check_map_indices(map);
   core::MeshData d;
   d.tets = map.tets;
@@ -94,7 +100,8 @@ void write_polycube_map(const std::filesystem::path& model_path, const std::file
   for (const core::Tri& tri : boundary_triangles(map.tets)) {
     const core::Vec3& p0 = map.polycube[tri[0]];
     d.triangles.push_back(tri);
-    d.triangle_labels.push_back(core::dominant_axis_label((map.polycube[tri[1]] - p0).cross(map.polycube[tri[2]] - p0)));
+    d.triangle_labels.push_back(
+        core::dominant_axis_label((map.polycube[tri[1]] - p0).cross(map.polycube[tri[2]] - p0)));
   }
   d.points = map.model;
   write_mesh(model_path, d);

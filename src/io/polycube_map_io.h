@@ -23,7 +23,7 @@ core::PolycubeMap read_polycube_map(const std::filesystem::path& model_path,
 //! reference; the same triangles in the same order in both files.
 //! The map is not validated (an invalid map can be written for inspection).
 //! \throw core::InputError on inconsistent sizes or indices, core::Error on I/O failure
-void write_polycube_map(const std::filesystem::path& model_path, const std::filesystem::path& polycube_path,
-                        const core::PolycubeMap& map);
+void write_polycube_map(const std::filesystem::path& model_path,
+                        const std::filesystem::path& polycube_path, const core::PolycubeMap& map);
 
 }  // namespace polycube::io

@@ -8,11 +8,11 @@
 #include "mesh/tet_locator.h"
 #include "structure/structure.h"
 
+#include <fmt/format.h>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
-#include <fmt/format.h>
 
 #include <algorithm>
 #include <chrono>
@@ -36,7 +36,9 @@ double seconds_since(Clock::time_point t0) {
 
 constexpr const char* kAxis[3] = {"x", "y", "z"};
 
-std::string fmt_point(const Vec3& p) { return fmt::format("({:.6g}, {:.6g}, {:.6g})", p.x(), p.y(), p.z()); }
+std::string fmt_point(const Vec3& p) {
+  return fmt::format("({:.6g}, {:.6g}, {:.6g})", p.x(), p.y(), p.z());
+}
 
 // --- levels and the arrangement of the polycube -----------------------------------------------
 
@@ -61,12 +63,13 @@ struct Arrangement {
     auto it = std::lower_bound(l.begin(), l.end(), x);
     if (it == l.end()) return static_cast<int>(l.size()) - 1;
     if (it == l.begin()) return 0;
-    return (x - *(it - 1) <= *it - x) ? static_cast<int>(it - l.begin()) - 1 : static_cast<int>(it - l.begin());
+    return (x - *(it - 1) <= *it - x) ? static_cast<int>(it - l.begin()) - 1
+                                      : static_cast<int>(it - l.begin());
   }
 };
 
-Arrangement build_arrangement(const structure::PolycubeStructure& s, const TetLocator& locator, double tol,
-                              long long max_boxes) {
+Arrangement build_arrangement(const structure::PolycubeStructure& s, const TetLocator& locator,
+                              double tol, long long max_boxes) {
   Arrangement arr;
   arr.tolerance = tol;
   arr.chart_level.assign(s.charts.size(), -1);
@@ -82,25 +85,29 @@ Arrangement build_arrangement(const structure::PolycubeStructure& s, const TetLo
       double sum = 0.0;
       for (std::size_t k = i; k < j; ++k) {
         sum += coords[k].first;
-        arr.chart_level[static_cast<std::size_t>(coords[k].second)] = static_cast<int>(arr.level[a].size());
+        arr.chart_level[static_cast<std::size_t>(coords[k].second)] =
+            static_cast<int>(arr.level[a].size());
       }
       arr.level[a].push_back(sum / static_cast<double>(j - i));
       i = j;
     }
     if (arr.level[a].size() < 2)
-      throw core::InputError(fmt::format("the polycube has {} chart plane(s) along {}: not a closed polycube",
-                                         arr.level[a].size(), kAxis[a]));
+      throw core::InputError(
+          fmt::format("the polycube has {} chart plane(s) along {}: not a closed polycube",
+                      arr.level[a].size(), kAxis[a]));
   }
   const long long nbox = static_cast<long long>(arr.boxes(0)) * arr.boxes(1) * arr.boxes(2);
   if (nbox > max_boxes)
-    throw core::InputError(fmt::format("the polycube has {} x {} x {} distinct chart planes: too many to grid",
-                                       arr.level[0].size(), arr.level[1].size(), arr.level[2].size()));
+    throw core::InputError(
+        fmt::format("the polycube has {} x {} x {} distinct chart planes: too many to grid",
+                    arr.level[0].size(), arr.level[1].size(), arr.level[2].size()));
   // a box of the arrangement is inside when its centre is (no chart crosses a box)
   arr.inside.assign(static_cast<std::size_t>(nbox), 0);
   for (int k = 0; k < arr.boxes(2); ++k)
     for (int j = 0; j < arr.boxes(1); ++j)
       for (int i = 0; i < arr.boxes(0); ++i) {
-        const Vec3 c(0.5 * (arr.level[0][i] + arr.level[0][i + 1]), 0.5 * (arr.level[1][j] + arr.level[1][j + 1]),
+        const Vec3 c(0.5 * (arr.level[0][i] + arr.level[0][i + 1]),
+                     0.5 * (arr.level[1][j] + arr.level[1][j + 1]),
                      0.5 * (arr.level[2][k] + arr.level[2][k + 1]));
         arr.inside[arr.box_index(i, j, k)] = locator.locate(c).tet >= 0 ? 1 : 0;
       }
@@ -114,7 +121,8 @@ std::array<std::vector<long long>, 3> snapped_levels(const Arrangement& arr, dou
     for (double l : arr.level[a]) {
       const double x = std::round(l * s);
       if (!(std::abs(x) < 1e9))
-        throw core::InputError(fmt::format("scale {:.6g} puts the polycube outside the integer lattice's range", s));
+        throw core::InputError(
+            fmt::format("scale {:.6g} puts the polycube outside the integer lattice's range", s));
       out[a].push_back(static_cast<long long>(x));
     }
   return out;
@@ -125,7 +133,8 @@ std::array<double, 2> counts_at(const Arrangement& arr, double s) {
   const auto sn = snapped_levels(arr, s);
   std::array<std::vector<double>, 3> len;
   for (int a = 0; a < 3; ++a)
-    for (std::size_t i = 0; i + 1 < sn[a].size(); ++i) len[a].push_back(static_cast<double>(sn[a][i + 1] - sn[a][i]));
+    for (std::size_t i = 0; i + 1 < sn[a].size(); ++i)
+      len[a].push_back(static_cast<double>(sn[a][i + 1] - sn[a][i]));
   double hexes = 0.0;
   double quads = 0.0;
   for (int k = -1; k < arr.boxes(2); ++k)
@@ -152,9 +161,12 @@ double choose_scale(const Arrangement& arr, int which, double target) {
         if (which == 0) {
           if (in) measure += len(0, i) * len(1, j) * len(2, k);
         } else {
-          if (j >= 0 && k >= 0 && in != arr.is_inside(i + 1, j, k)) measure += len(1, j) * len(2, k);
-          if (i >= 0 && k >= 0 && in != arr.is_inside(i, j + 1, k)) measure += len(0, i) * len(2, k);
-          if (i >= 0 && j >= 0 && in != arr.is_inside(i, j, k + 1)) measure += len(0, i) * len(1, j);
+          if (j >= 0 && k >= 0 && in != arr.is_inside(i + 1, j, k))
+            measure += len(1, j) * len(2, k);
+          if (i >= 0 && k >= 0 && in != arr.is_inside(i, j + 1, k))
+            measure += len(0, i) * len(2, k);
+          if (i >= 0 && j >= 0 && in != arr.is_inside(i, j, k + 1))
+            measure += len(0, i) * len(1, j);
         }
       }
   if (!(measure > 0.0)) throw core::GeometryError("the polycube has no volume");
@@ -190,7 +202,7 @@ Vec3 snap_point(const SnapContext& c, const Vec3& p) {
   for (int a = 0; a < 3; ++a) {
     const int l = c.arr.nearest_level(a, p[a]);
     q[a] = std::abs(p[a] - c.arr.level[a][l]) <= c.arr.tolerance ? static_cast<double>(c.sn[a][l])
-                                                                  : std::round(p[a] * c.scale);
+                                                                 : std::round(p[a] * c.scale);
   }
   return q;
 }
@@ -205,8 +217,8 @@ bool in_polygon(const std::vector<std::vector<std::array<double, 2>>>& loops, do
       const auto& q = l[(i + 1) % n];
       // on the segment (integer coordinates: exact)
       const double cross = (q[0] - p[0]) * (y - p[1]) - (q[1] - p[1]) * (x - p[0]);
-      if (cross == 0.0 && x >= std::min(p[0], q[0]) && x <= std::max(p[0], q[0]) && y >= std::min(p[1], q[1]) &&
-          y <= std::max(p[1], q[1]))
+      if (cross == 0.0 && x >= std::min(p[0], q[0]) && x <= std::max(p[0], q[0]) &&
+          y >= std::min(p[1], q[1]) && y <= std::max(p[1], q[1]))
         return true;
       if ((p[1] > y) != (q[1] > y)) {
         const double xi = p[0] + (y - p[1]) * (q[0] - p[0]) / (q[1] - p[1]);
@@ -221,13 +233,18 @@ std::vector<SnapDefect> detect_defects(const SnapContext& c) {
   const auto& s = c.s;
   std::vector<SnapDefect> out;
   std::vector<Vec3> snapped(s.corners.size());
-  for (std::size_t i = 0; i < s.corners.size(); ++i) snapped[i] = snap_point(c, s.corners[i].position);
-  auto scaled = [&](int corner) -> Vec3 { return s.corners[static_cast<std::size_t>(corner)].position * c.scale; };
+  for (std::size_t i = 0; i < s.corners.size(); ++i)
+    snapped[i] = snap_point(c, s.corners[i].position);
+  auto scaled = [&](int corner) -> Vec3 {
+    return s.corners[static_cast<std::size_t>(corner)].position * c.scale;
+  };
 
   // 1. corners merged into one lattice point
   std::vector<int> order(s.corners.size());
   std::iota(order.begin(), order.end(), 0);
-  auto key = [&](int i) { return std::array<double, 3>{snapped[i].x(), snapped[i].y(), snapped[i].z()}; };
+  auto key = [&](int i) {
+    return std::array<double, 3>{snapped[i].x(), snapped[i].y(), snapped[i].z()};
+  };
   std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return key(x) < key(y); });
   for (std::size_t i = 0; i < order.size();) {
     std::size_t j = i + 1;
@@ -245,7 +262,8 @@ std::vector<SnapDefect> detect_defects(const SnapContext& c) {
         d.positions.push_back(scaled(cid));
         names += (names.empty() ? "" : ", ") + fmt::format("{} {}", cid, fmt_point(scaled(cid)));
       }
-      d.description = fmt::format("corners {} merge at lattice point {}", names, fmt_point(d.lattice));
+      d.description =
+          fmt::format("corners {} merge at lattice point {}", names, fmt_point(d.lattice));
       out.push_back(std::move(d));
     }
     i = j;
@@ -261,8 +279,9 @@ std::vector<SnapDefect> detect_defects(const SnapContext& c) {
     d.corners = {pe.corners[0], pe.corners[1]};
     d.positions = {scaled(pe.corners[0]), scaled(pe.corners[1])};
     d.lattice = snapped[pe.corners[0]];
-    d.description = fmt::format("edge {} (corners {}-{}, along {}, length {:.6g}) collapses to zero length", e,
-                                pe.corners[0], pe.corners[1], pe.axis >= 0 ? kAxis[pe.axis] : "?", pe.length * c.scale);
+    d.description = fmt::format(
+        "edge {} (corners {}-{}, along {}, length {:.6g}) collapses to zero length", e,
+        pe.corners[0], pe.corners[1], pe.axis >= 0 ? kAxis[pe.axis] : "?", pe.length * c.scale);
     out.push_back(std::move(d));
   }
   // 3. charts collapsed to zero area, and 4. corners pushed onto charts they do not belong to
@@ -300,9 +319,10 @@ std::vector<SnapDefect> detect_defects(const SnapContext& c) {
         d.positions.push_back(scaled(cid));
       }
       d.lattice = snapped[s.faces[ci].loops[0].corners[0]];
-      d.description = fmt::format("chart {} ({} at {} = {:.6g}, area {:.6g}) collapses to zero area", ci,
-                                  core::label_name(ch.label), kAxis[ch.axis], ch.coordinate * c.scale,
-                                  ch.area * c.scale * c.scale);
+      d.description =
+          fmt::format("chart {} ({} at {} = {:.6g}, area {:.6g}) collapses to zero area", ci,
+                      core::label_name(ch.label), kAxis[ch.axis], ch.coordinate * c.scale,
+                      ch.area * c.scale * c.scale);
       out.push_back(std::move(d));
     }
   }
@@ -310,7 +330,8 @@ std::vector<SnapDefect> detect_defects(const SnapContext& c) {
   std::map<std::pair<int, long long>, std::vector<int>> by_plane;
   for (std::size_t ci = 0; ci < s.charts.size(); ++ci) {
     const int l = c.arr.chart_level[ci];
-    if (l >= 0 && !polys[ci].empty()) by_plane[{s.charts[ci].axis, c.sn[s.charts[ci].axis][l]}].push_back(static_cast<int>(ci));
+    if (l >= 0 && !polys[ci].empty())
+      by_plane[{s.charts[ci].axis, c.sn[s.charts[ci].axis][l]}].push_back(static_cast<int>(ci));
   }
   for (std::size_t cid = 0; cid < s.corners.size(); ++cid) {
     const Vec3& q = snapped[cid];
@@ -335,9 +356,10 @@ std::vector<SnapDefect> detect_defects(const SnapContext& c) {
         d.corners = {static_cast<int>(cid)};
         d.positions = {scaled(static_cast<int>(cid))};
         d.lattice = q;
-        d.description = fmt::format("corner {} {} is pushed onto chart {} ({} at {} = {:.6g}) at lattice point {}", cid,
-                                    fmt_point(scaled(static_cast<int>(cid))), ci, core::label_name(ch.label), kAxis[a],
-                                    ch.coordinate * c.scale, fmt_point(q));
+        d.description = fmt::format(
+            "corner {} {} is pushed onto chart {} ({} at {} = {:.6g}) at lattice point {}", cid,
+            fmt_point(scaled(static_cast<int>(cid))), ci, core::label_name(ch.label), kAxis[a],
+            ch.coordinate * c.scale, fmt_point(q));
         out.push_back(std::move(d));
       }
     }
@@ -349,9 +371,9 @@ std::vector<SnapDefect> detect_defects(const SnapContext& c) {
 
 //! Scaled polycube positions with every chart moved to its rounded plane and the displacement
 //! extended harmonically (uniform graph Laplacian of the tet mesh) to the other vertices.
-std::vector<Vec3> deform_to_snapped(const core::PolycubeMap& map, const structure::PolycubeStructure& s,
-                                    const Arrangement& arr, const std::array<std::vector<long long>, 3>& sn,
-                                    double scale) {
+std::vector<Vec3> deform_to_snapped(const core::PolycubeMap& map,
+                                    const structure::PolycubeStructure& s, const Arrangement& arr,
+                                    const std::array<std::vector<long long>, 3>& sn, double scale) {
   const int nv = map.num_vertices();
   std::vector<Vec3> out(static_cast<std::size_t>(nv));
   for (int v = 0; v < nv; ++v) out[v] = map.polycube[v] * scale;
@@ -396,7 +418,8 @@ std::vector<Vec3> deform_to_snapped(const core::PolycubeMap& map, const structur
       Eigen::SparseMatrix<double> L(nfree, nfree);
       L.setFromTriplets(trip.begin(), trip.end());
       Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(L);
-      if (solver.info() != Eigen::Success) throw core::SolverError("snapping: the harmonic extension failed");
+      if (solver.info() != Eigen::Success)
+        throw core::SolverError("snapping: the harmonic extension failed");
       const Eigen::VectorXd x = solver.solve(rhs);
       for (int v = 0; v < nv; ++v)
         if (free_id[v] >= 0) disp[v] = x[free_id[v]];
@@ -427,7 +450,8 @@ int count_inverted_hexes(const core::HexMesh& m) {
     for (int i = 0; i < 8 && !bad; ++i) {
       const auto& nb = core::kHexCornerNeighbors[static_cast<std::size_t>(i)];
       const Vec3& p = m.points[h[i]];
-      const double j = (m.points[h[nb[0]]] - p).dot((m.points[h[nb[1]]] - p).cross(m.points[h[nb[2]]] - p));
+      const double j =
+          (m.points[h[nb[0]]] - p).dot((m.points[h[nb[1]]] - p).cross(m.points[h[nb[2]]] - p));
       bad = !(j > 0.0);
     }
     n += bad ? 1 : 0;
@@ -439,11 +463,16 @@ int count_inverted_hexes(const core::HexMesh& m) {
 
 const char* defect_name(DefectKind k) {
   switch (k) {
-    case DefectKind::CornersMerged: return "corners merged";
-    case DefectKind::CornerOnFacet: return "corner pushed onto a facet";
-    case DefectKind::EdgeCollapsed: return "edge collapsed";
-    case DefectKind::ChartCollapsed: return "chart collapsed";
-    case DefectKind::TetsDegenerated: return "tets flattened or inverted";
+    case DefectKind::CornersMerged:
+      return "corners merged";
+    case DefectKind::CornerOnFacet:
+      return "corner pushed onto a facet";
+    case DefectKind::EdgeCollapsed:
+      return "edge collapsed";
+    case DefectKind::ChartCollapsed:
+      return "chart collapsed";
+    case DefectKind::TetsDegenerated:
+      return "tets flattened or inverted";
   }
   return "?";
 }
@@ -451,8 +480,9 @@ const char* defect_name(DefectKind k) {
 std::string SnapReport::summary(int max_items) const {
   if (defects.empty()) return "no defect";
   std::string out;
-  for (DefectKind k : {DefectKind::CornersMerged, DefectKind::CornerOnFacet, DefectKind::EdgeCollapsed,
-                       DefectKind::ChartCollapsed, DefectKind::TetsDegenerated}) {
+  for (DefectKind k :
+       {DefectKind::CornersMerged, DefectKind::CornerOnFacet, DefectKind::EdgeCollapsed,
+        DefectKind::ChartCollapsed, DefectKind::TetsDegenerated}) {
     int n = 0;
     std::string items;
     for (const SnapDefect& d : defects)
@@ -462,7 +492,8 @@ std::string SnapReport::summary(int max_items) const {
       }
     if (n == 0) continue;
     if (!out.empty()) out += " | ";
-    out += fmt::format("{}: {}{}", defect_name(k), items, n > max_items ? fmt::format("; ... ({} in all)", n) : "");
+    out += fmt::format("{}: {}{}", defect_name(k), items,
+                       n > max_items ? fmt::format("; ... ({} in all)", n) : "");
   }
   return out;
 }
@@ -482,6 +513,8 @@ GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& option
   const double tol = options.tolerance * diag;
   const TetLocator base_locator(map.tets, map.polycube, tol);
   const Arrangement arr = build_arrangement(s, base_locator, tol, options.max_lattice_points);
+  core::logger().debug("gridding: structure, locator and arrangement {:.3f} s",
+                       seconds_since(t_start));
 
   // 1. the scale
   double scale = 1.0;
@@ -493,8 +526,8 @@ GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& option
     scale = choose_scale(arr, 1, options.target_quads);
   res.scale = scale;
   const auto sn = snapped_levels(arr, scale);
-  core::logger().info("gridding: scale {:.6g}, {} x {} x {} chart planes", scale, arr.level[0].size(),
-                      arr.level[1].size(), arr.level[2].size());
+  core::logger().info("gridding: scale {:.6g}, {} x {} x {} chart planes", scale,
+                      arr.level[0].size(), arr.level[1].size(), arr.level[2].size());
 
   // 2. snapping: how far the levels move, whether some collapse
   SnapReport& rep = res.snapping;
@@ -502,14 +535,16 @@ GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& option
   for (int a = 0; a < 3; ++a) {
     rep.levels[a] = static_cast<int>(arr.level[a].size());
     for (std::size_t i = 0; i < sn[a].size(); ++i) {
-      rep.max_displacement = std::max(rep.max_displacement, std::abs(static_cast<double>(sn[a][i]) - arr.level[a][i] * scale));
+      rep.max_displacement = std::max(
+          rep.max_displacement, std::abs(static_cast<double>(sn[a][i]) - arr.level[a][i] * scale));
       if (i > 0 && sn[a][i] <= sn[a][i - 1]) ++rep.collapsed_levels;
     }
   }
   rep.needed = rep.max_displacement > tol_lattice;
   const SnapContext ctx{s, arr, sn, scale};
   for (const auto& c : s.corners)
-    if ((snap_point(ctx, c.position) - c.position * scale).cwiseAbs().maxCoeff() > tol_lattice) ++rep.corners_moved;
+    if ((snap_point(ctx, c.position) - c.position * scale).cwiseAbs().maxCoeff() > tol_lattice)
+      ++rep.corners_moved;
   rep.deformed = rep.collapsed_levels > 0;
 
   // 3. the lattice: integer cells inside the snapped arrangement boxes
@@ -523,18 +558,23 @@ GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& option
   }
   const long long npoints_box = (n[0] + 1) * (n[1] + 1) * (n[2] + 1);
   if (npoints_box > options.max_lattice_points || npoints_box > INT_MAX)
-    throw core::InputError(fmt::format("the lattice at scale {:.6g} has {} x {} x {} cells: too large (choose a smaller "
-                                       "scale or fewer hexes)", scale, n[0], n[1], n[2]));
+    throw core::InputError(fmt::format(
+        "the lattice at scale {:.6g} has {} x {} x {} cells: too large (choose a smaller "
+        "scale or fewer hexes)",
+        scale, n[0], n[1], n[2]));
   std::array<std::vector<int>, 3> cell_box;  // arrangement interval of each lattice cell
   for (int a = 0; a < 3; ++a) {
     cell_box[a].assign(static_cast<std::size_t>(n[a]), -1);
     for (std::size_t i = 0; i + 1 < sn[a].size(); ++i)
-      for (long long c = sn[a][i]; c < sn[a][i + 1]; ++c) cell_box[a][static_cast<std::size_t>(c - lo[a])] = static_cast<int>(i);
+      for (long long c = sn[a][i]; c < sn[a][i + 1]; ++c)
+        cell_box[a][static_cast<std::size_t>(c - lo[a])] = static_cast<int>(i);
   }
   const int nx = static_cast<int>(n[0]);
   const int ny = static_cast<int>(n[1]);
   const int nz = static_cast<int>(n[2]);
-  auto pidx = [&](int i, int j, int k) { return (static_cast<std::size_t>(k) * (ny + 1) + j) * (nx + 1) + i; };
+  auto pidx = [&](int i, int j, int k) {
+    return (static_cast<std::size_t>(k) * (ny + 1) + j) * (nx + 1) + i;
+  };
   std::vector<int> point_id(static_cast<std::size_t>(npoints_box), -1);
   std::vector<std::array<int, 3>> cells;
   for (int k = 0; k < nz; ++k)
@@ -542,10 +582,12 @@ GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& option
       for (int i = 0; i < nx; ++i)
         if (arr.is_inside(cell_box[0][i], cell_box[1][j], cell_box[2][k])) {
           cells.push_back({i, j, k});
-          for (int c = 0; c < 8; ++c) point_id[pidx(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1))] = 0;
+          for (int c = 0; c < 8; ++c)
+            point_id[pidx(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1))] = 0;
         }
   if (cells.empty())
-    throw core::GeometryError(fmt::format("no lattice cell lies inside the polycube at scale {:.6g}", scale));
+    throw core::GeometryError(
+        fmt::format("no lattice cell lies inside the polycube at scale {:.6g}", scale));
   std::vector<std::array<int, 3>> lattice_points;
   for (int k = 0; k <= nz; ++k)
     for (int j = 0; j <= ny; ++j)
@@ -561,7 +603,8 @@ GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& option
   hp.cells.reserve(cells.size());
   for (const auto& c : cells) {
     core::Hex h{};
-    for (int v = 0; v < 8; ++v) h[v] = point_id[pidx(c[0] + kCorner[v][0], c[1] + kCorner[v][1], c[2] + kCorner[v][2])];
+    for (int v = 0; v < 8; ++v)
+      h[v] = point_id[pidx(c[0] + kCorner[v][0], c[1] + kCorner[v][1], c[2] + kCorner[v][2])];
     hp.cells.push_back(h);
   }
   hp.points.reserve(lattice_points.size());
@@ -581,11 +624,12 @@ GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& option
       SnapDefect d;
       d.kind = DefectKind::TetsDegenerated;
       d.count = static_cast<int>(bad.size());
-      d.description = fmt::format("the snapped polycube has {} flat or inverted tets (first: tet {})", bad.size(), bad[0]);
+      d.description = fmt::format(
+          "the snapped polycube has {} flat or inverted tets (first: tet {})", bad.size(), bad[0]);
       rep.defects.push_back(std::move(d));
     }
-    core::logger().warn("snapping at scale {:.6g} collapses {} coordinate level(s): {}", scale, rep.collapsed_levels,
-                        rep.summary());
+    core::logger().warn("snapping at scale {:.6g} collapses {} coordinate level(s): {}", scale,
+                        rep.collapsed_levels, rep.summary());
   }
   // inverse of the per-axis snapping map, lattice coordinate -> polycube coordinate (exact path)
   std::array<std::vector<double>, 3> inverse;
@@ -598,13 +642,17 @@ GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& option
         const double len = static_cast<double>(sn[a][i + 1] - sn[a][i]);
         for (long long c = sn[a][i]; c <= sn[a][i + 1]; ++c) {
           const double t = static_cast<double>(c - sn[a][i]) / len;
-          inverse[a][static_cast<std::size_t>(c - lo[a])] = c == sn[a][i + 1] ? l1 : l0 + t * (l1 - l0);
+          inverse[a][static_cast<std::size_t>(c - lo[a])] =
+              c == sn[a][i + 1] ? l1 : l0 + t * (l1 - l0);
         }
       }
     }
 
+  core::logger().debug("gridding: lattice of {} hexes {:.3f} s", hp.cells.size(),
+                       seconds_since(t_start));
   // 5. which points to locate
   const core::HexBoundary hb = core::boundary(hp);
+  core::logger().debug("gridding: boundary {:.3f} s", seconds_since(t_start));
   std::vector<int> to_locate;
   if (options.volume) {
     to_locate.resize(lattice_points.size());
@@ -615,7 +663,8 @@ GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& option
 
   // 6. locate and map
   const auto t_locate = Clock::now();
-  std::vector<Vec3> model_pos(lattice_points.size(), Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
+  std::vector<Vec3> model_pos(lattice_points.size(),
+                              Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
   {
     const TetLocator* locator = &base_locator;
     std::unique_ptr<TetLocator> deformed_locator;
@@ -639,7 +688,8 @@ GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& option
         hit = locator->nearest(q, 2);
         if (hit.tet < 0) hit = locator->nearest_brute_force(q);
         ++res.points_failed;
-        res.max_failed_distance = std::max(res.max_failed_distance, -hit.score / (rep.deformed ? scale : 1.0));
+        res.max_failed_distance =
+            std::max(res.max_failed_distance, -hit.score / (rep.deformed ? scale : 1.0));
       }
       if (hit.tet < 0) throw core::GeometryError("gridding: the polycube has no usable tet");
       // clamp to the tet (points on the boundary may be outside by rounding) and map
@@ -656,8 +706,9 @@ GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& option
   }
   res.seconds_locate = seconds_since(t_locate);
   if (res.points_failed > 0)
-    core::logger().warn("{} lattice point(s) lie outside the polycube by up to {:.3g}: mapped to the nearest tet",
-                        res.points_failed, res.max_failed_distance);
+    core::logger().warn(
+        "{} lattice point(s) lie outside the polycube by up to {:.3g}: mapped to the nearest tet",
+        res.points_failed, res.max_failed_distance);
 
   // 7. assemble the meshes
   if (options.volume) {
@@ -668,7 +719,8 @@ GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& option
   res.quad_polycube = hb.surface;
   res.quad_model.cells = hb.surface.cells;
   res.quad_model.points.reserve(hb.vertex_map.size());
-  for (int v : hb.vertex_map) res.quad_model.points.push_back(model_pos[static_cast<std::size_t>(v)]);
+  for (int v : hb.vertex_map)
+    res.quad_model.points.push_back(model_pos[static_cast<std::size_t>(v)]);
   res.quad_polycube.labels.clear();
   res.quad_model.labels.clear();
   res.seconds_total = seconds_since(t_start);

@@ -33,9 +33,9 @@ namespace polycube::mesh {
 //! Options of the gridding. Exactly one way of choosing the resolution applies: scale when
 //! > 0, else target_hexes when > 0, else target_quads when > 0, else scale 1.
 struct GridOptions {
-  double scale = 0.0;     //!< lattice cells per polycube unit (> 0), or 0 to choose it
-  int target_hexes = 0;   //!< choose the scale whose hex count is closest to this
-  int target_quads = 0;   //!< choose the scale whose boundary quad count is closest to this
+  double scale = 0.0;    //!< lattice cells per polycube unit (> 0), or 0 to choose it
+  int target_hexes = 0;  //!< choose the scale whose hex count is closest to this
+  int target_quads = 0;  //!< choose the scale whose boundary quad count is closest to this
   //! Locate every lattice point (hex and quad meshes); false: only the boundary lattice points
   //! (quad meshes only; hex_model is then left empty, hex_polycube is still filled).
   bool volume = true;
@@ -62,13 +62,13 @@ const char* defect_name(DefectKind k);
 //! One snapping defect.
 struct SnapDefect {
   DefectKind kind = DefectKind::CornersMerged;
-  std::vector<int> corners;             //!< corner ids involved (structure::PolycubeStructure)
-  std::vector<core::Vec3> positions;    //!< their scaled polycube positions before snapping
+  std::vector<int> corners;                 //!< corner ids involved (structure::PolycubeStructure)
+  std::vector<core::Vec3> positions;        //!< their scaled polycube positions before snapping
   core::Vec3 lattice = core::Vec3::Zero();  //!< where they end up (lattice units)
-  int edge = -1;                        //!< EdgeCollapsed: the polycube edge
-  int chart = -1;                       //!< ChartCollapsed, CornerOnFacet: the chart
-  int count = 0;                        //!< TetsDegenerated: number of tets; else 0
-  std::string description;              //!< one line naming the defect
+  int edge = -1;                            //!< EdgeCollapsed: the polycube edge
+  int chart = -1;                           //!< ChartCollapsed, CornerOnFacet: the chart
+  int count = 0;                            //!< TetsDegenerated: number of tets; else 0
+  std::string description;                  //!< one line naming the defect
 };
 
 //! What snapping did.
@@ -88,20 +88,23 @@ struct SnapReport {
 
 //! The gridded meshes.
 struct GridResult {
-  core::HexMesh hex_model;     //!< #H hexes, model positions of the lattice points
-  core::HexMesh hex_polycube;  //!< same connectivity, lattice positions (integer coordinates)
-  core::QuadMesh quad_model;   //!< boundary of the hex lattice, model positions
-  core::QuadMesh quad_polycube;//!< same connectivity, lattice positions
-  double scale = 0.0;          //!< the scale used
+  core::HexMesh hex_model;           //!< #H hexes, model positions of the lattice points
+  core::HexMesh hex_polycube;        //!< same connectivity, lattice positions (integer coordinates)
+  core::QuadMesh quad_model;         //!< boundary of the hex lattice, model positions
+  core::QuadMesh quad_polycube;      //!< same connectivity, lattice positions
+  double scale = 0.0;                //!< the scale used
   std::array<int, 3> lattice_min{};  //!< integer bounding box of the snapped polycube
   std::array<int, 3> lattice_max{};
   SnapReport snapping;
-  int points_located = 0;      //!< lattice points located within the tolerance
-  int points_failed = 0;       //!< lattice points found outside every tet (mapped to the nearest, clamped)
-  double max_failed_distance = 0.0;  //!< how far outside the worst failed point was (polycube units)
-  int inverted_model_hexes = -1;     //!< hexes with a non-positive corner Jacobian in model space (-1: not computed)
-  double seconds_locate = 0.0;       //!< wall time of locating and mapping the lattice points
-  double seconds_total = 0.0;        //!< wall time of the whole gridding
+  int points_located = 0;  //!< lattice points located within the tolerance
+  int points_failed =
+      0;  //!< lattice points found outside every tet (mapped to the nearest, clamped)
+  double max_failed_distance =
+      0.0;  //!< how far outside the worst failed point was (polycube units)
+  int inverted_model_hexes =
+      -1;  //!< hexes with a non-positive corner Jacobian in model space (-1: not computed)
+  double seconds_locate = 0.0;  //!< wall time of locating and mapping the lattice points
+  double seconds_total = 0.0;   //!< wall time of the whole gridding
 };
 
 //! Grid a polycube map.

@@ -11,7 +11,8 @@ namespace polycube::mesh {
 
 using core::Vec3;
 
-TetLocator::TetLocator(const std::vector<core::Tet>& tets, const std::vector<Vec3>& points, double tolerance)
+TetLocator::TetLocator(const std::vector<core::Tet>& tets, const std::vector<Vec3>& points,
+                       double tolerance)
     : tolerance_(std::max(0.0, tolerance)) {
   const int nv = static_cast<int>(points.size());
   // 1. per-tet data (flat tets skipped)
@@ -19,14 +20,16 @@ TetLocator::TetLocator(const std::vector<core::Tet>& tets, const std::vector<Vec
   for (std::size_t t = 0; t < tets.size(); ++t) {
     const auto& c = tets[t];
     for (int v : c)
-      if (v < 0 || v >= nv) throw core::InputError("TetLocator: tet " + std::to_string(t) + " has an invalid vertex");
+      if (v < 0 || v >= nv)
+        throw core::InputError("TetLocator: tet " + std::to_string(t) + " has an invalid vertex");
     const Vec3& p0 = points[c[0]];
     Eigen::Matrix3d m;
     m.col(0) = points[c[1]] - p0;
     m.col(1) = points[c[2]] - p0;
     m.col(2) = points[c[3]] - p0;
-    const double l = std::max({m.col(0).norm(), m.col(1).norm(), m.col(2).norm(), (points[c[2]] - points[c[1]]).norm(),
-                               (points[c[3]] - points[c[1]]).norm(), (points[c[3]] - points[c[2]]).norm()});
+    const double l = std::max(
+        {m.col(0).norm(), m.col(1).norm(), m.col(2).norm(), (points[c[2]] - points[c[1]]).norm(),
+         (points[c[3]] - points[c[1]]).norm(), (points[c[3]] - points[c[2]]).norm()});
     const double det = m.determinant();
     if (!(std::abs(det) > 1e-14 * l * l * l)) continue;
     max_edge = std::max(max_edge, l);
@@ -82,7 +85,9 @@ TetLocator::TetLocator(const std::vector<core::Tet>& tets, const std::vector<Vec
     a = cell_of(tlo);
     b = cell_of(thi);
   };
-  auto cell_index = [&](int i, int j, int k) { return (static_cast<std::size_t>(k) * dims_[1] + j) * dims_[0] + i; };
+  auto cell_index = [&](int i, int j, int k) {
+    return (static_cast<std::size_t>(k) * dims_[1] + j) * dims_[0] + i;
+  };
   for (int pass = 0; pass < 2; ++pass) {
     std::vector<int> fill;
     if (pass == 1) {
@@ -153,7 +158,8 @@ TetLocator::Hit TetLocator::nearest(const Vec3& q, int rings) const {
     for (int j = std::max(0, c[1] - rings); j <= std::min(dims_[1] - 1, c[1] + rings); ++j)
       for (int i = std::max(0, c[0] - rings); i <= std::min(dims_[0] - 1, c[0] + rings); ++i) {
         const std::size_t ci = (static_cast<std::size_t>(k) * dims_[1] + j) * dims_[0] + i;
-        for (int s = cell_start_[ci]; s < cell_start_[ci + 1]; ++s) evaluate(cell_items_[static_cast<std::size_t>(s)], q, best);
+        for (int s = cell_start_[ci]; s < cell_start_[ci + 1]; ++s)
+          evaluate(cell_items_[static_cast<std::size_t>(s)], q, best);
       }
   return best;
 }

@@ -22,15 +22,16 @@ class TetLocator {
  public:
   //! Result of a query.
   struct Hit {
-    int tet = -1;                        //!< located tet, -1 when none
-    std::array<double, 4> bary{};        //!< barycentric coordinates in that tet (sum 1)
-    double score = -1e300;               //!< signed distance score (>= 0 inside)
+    int tet = -1;                  //!< located tet, -1 when none
+    std::array<double, 4> bary{};  //!< barycentric coordinates in that tet (sum 1)
+    double score = -1e300;         //!< signed distance score (>= 0 inside)
   };
 
   //! \param tets   #T tets (indices into points)
   //! \param points #V positions
   //! \param tolerance points up to this distance outside a tet may be located in it (absolute)
-  TetLocator(const std::vector<core::Tet>& tets, const std::vector<core::Vec3>& points, double tolerance);
+  TetLocator(const std::vector<core::Tet>& tets, const std::vector<core::Vec3>& points,
+             double tolerance);
 
   //! The tet containing q (score >= -tolerance), or tet = -1.
   [[nodiscard]] Hit locate(const core::Vec3& q) const;
@@ -48,21 +49,22 @@ class TetLocator {
  private:
   struct TetData {
     core::Vec3 p0;
-    Eigen::Matrix3d inv;            // rows: gradients of barycentric coordinates 1, 2, 3
-    std::array<double, 4> height;   // 1 / |gradient of barycentric i|: distance of vertex i to its face
+    Eigen::Matrix3d inv;  // rows: gradients of barycentric coordinates 1, 2, 3
+    std::array<double, 4>
+        height;  // 1 / |gradient of barycentric i|: distance of vertex i to its face
   };
   void evaluate(int slot, const core::Vec3& q, Hit& best) const;
   [[nodiscard]] std::array<int, 3> cell_of(const core::Vec3& q) const;
 
-  std::vector<int> tet_ids_;        // indexed tets (original ids), increasing
-  std::vector<TetData> data_;       // per indexed tet
+  std::vector<int> tet_ids_;   // indexed tets (original ids), increasing
+  std::vector<TetData> data_;  // per indexed tet
   core::Vec3 origin_;
-  core::Vec3 inv_cell_;             // 1 / cell size per axis
+  core::Vec3 inv_cell_;  // 1 / cell size per axis
   std::array<int, 3> dims_{1, 1, 1};
-  std::vector<int> cell_start_;     // CSR: slots of each grid cell
+  std::vector<int> cell_start_;  // CSR: slots of each grid cell
   std::vector<int> cell_items_;
   double tolerance_ = 0.0;
-  double inside_threshold_ = 0.0;   // a score above this means strictly inside: stop searching
+  double inside_threshold_ = 0.0;  // a score above this means strictly inside: stop searching
 };
 
 }  // namespace polycube::mesh

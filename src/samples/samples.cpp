@@ -88,13 +88,21 @@ double diagonal(double dx, double dy, double dz) { return std::sqrt(dx * dx + dy
 const std::vector<Recipe>& recipes() {
   static const std::vector<Recipe> all = {
       {{"box-cylinder", "box 100x60x40 mm with a cylinder r=20 h=40 standing on its top", 0},
-       build_box_cylinder, diagonal(100, 60, 80) / 55.0, 10.0},
+       build_box_cylinder,
+       diagonal(100, 60, 80) / 55.0,
+       10.0},
       {{"l-bracket", "L-bracket 80x40x60 mm, 15 mm thick, one through-hole r=8 in its base", 1},
-       build_l_bracket, diagonal(80, 40, 60) / 55.0, 4.0},
+       build_l_bracket,
+       diagonal(80, 40, 60) / 55.0,
+       4.0},
       {{"flange", "disc r=50 t=12 mm with a hub r=22 up to z=40 and two through-holes r=6", 2},
-       build_flange, diagonal(100, 100, 40) / 55.0, 3.0},
-      {{"ring", "thick ring R=40 r=28 h=20 mm (annular cylinder)", 1}, build_ring,
-       diagonal(80, 80, 20) / 55.0, 6.0},
+       build_flange,
+       diagonal(100, 100, 40) / 55.0,
+       3.0},
+      {{"ring", "thick ring R=40 r=28 h=20 mm (annular cylinder)", 1},
+       build_ring,
+       diagonal(80, 80, 20) / 55.0,
+       6.0},
   };
   return all;
 }
@@ -124,22 +132,25 @@ core::TriMesh make_sample(const std::string& name, const SampleOptions& opt) {
 
   const double l = opt.target_edge_length;
   if (!std::isfinite(l) || l < 0.0)
-    throw core::InputError(fmt::format("sample '{}': target edge length must be a finite number "
-                                       ">= 0 (0: default), got {}",
-                                       name, l));
+    throw core::InputError(
+        fmt::format("sample '{}': target edge length must be a finite number "
+                    ">= 0 (0: default), got {}",
+                    name, l));
   if (l > recipe->max_edge_length)
-    throw core::InputError(fmt::format("sample '{}': target edge length {} mm is larger than the "
-                                       "shape's smallest feature allows ({} mm)",
-                                       name, l, recipe->max_edge_length));
+    throw core::InputError(
+        fmt::format("sample '{}': target edge length {} mm is larger than the "
+                    "shape's smallest feature allows ({} mm)",
+                    name, l, recipe->max_edge_length));
 
   const Solid solid = recipe->build();
   detail::RemeshParams params;
   params.target_edge_length = l > 0.0 ? l : recipe->default_edge_length;
   const double estimate = estimated_triangles(detail::area(solid), params.target_edge_length);
   if (estimate > kMaxTriangles)
-    throw core::InputError(fmt::format("sample '{}': target edge length {} mm would give about "
-                                       "{:.0f} triangles (limit {:.0f})",
-                                       name, params.target_edge_length, estimate, kMaxTriangles));
+    throw core::InputError(
+        fmt::format("sample '{}': target edge length {} mm would give about "
+                    "{:.0f} triangles (limit {:.0f})",
+                    name, params.target_edge_length, estimate, kMaxTriangles));
 
   core::logger().debug("sample {}: remeshing to edge length {:.3g} mm", name,
                        params.target_edge_length);

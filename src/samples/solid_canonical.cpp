@@ -123,8 +123,8 @@ SurfaceMesh canonicalize(SurfaceMesh& m) {
       const core::Vec3 p = position(m, v);
       const core::Vec3 d1 = position(m, ends[0]) - p, d2 = position(m, ends[1]) - p;
       const bool artefact = std::min(d1.norm(), d2.norm()) < kMergeDistance;
-      const bool straight = d1.dot(d2) < 0.0 &&
-                            d1.cross(d2).norm() <= kCollinearSine * d1.norm() * d2.norm();
+      const bool straight =
+          d1.dot(d2) < 0.0 && d1.cross(d2).norm() <= kCollinearSine * d1.norm() * d2.norm();
       essential[v.idx()] = (artefact || straight) ? 0 : 1;
     }
   }

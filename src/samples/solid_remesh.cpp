@@ -47,16 +47,15 @@ core::TriMesh remesh(const Solid& s, const RemeshParams& params) {
     is_corner[v] = degree != 0 && degree != 2;
   }
 
-  PMP::isotropic_remeshing(faces(m), params.target_edge_length, m,
-                           CGAL::parameters::number_of_iterations(
-                               static_cast<unsigned int>(params.iterations))
-                               .number_of_relaxation_steps(
-                                   static_cast<unsigned int>(params.relaxation_steps))
-                               .edge_is_constrained_map(is_feature)
-                               .vertex_is_constrained_map(is_corner)
-                               .face_patch_map(patch)
-                               .protect_constraints(false)
-                               .relax_constraints(false));
+  PMP::isotropic_remeshing(
+      faces(m), params.target_edge_length, m,
+      CGAL::parameters::number_of_iterations(static_cast<unsigned int>(params.iterations))
+          .number_of_relaxation_steps(static_cast<unsigned int>(params.relaxation_steps))
+          .edge_is_constrained_map(is_feature)
+          .vertex_is_constrained_map(is_corner)
+          .face_patch_map(patch)
+          .protect_constraints(false)
+          .relax_constraints(false));
   m.collect_garbage();
 
   // Re-validate before handing the surface out (ARCHITECTURE §9).

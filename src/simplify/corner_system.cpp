@@ -260,7 +260,15 @@ CornerSystem build_corner_system(const PolycubeStructure& s, double scale, const
     for (int a = 0; a < 3; ++a) b.lo[a] = b.hi[a] = ax[a].corner_class[c];
     sys.boxes.push_back(b);
   }
-  std::array<std::vector<std::array<int, 2>>, 3> strict_pairs, weak_pairs;
+  // dense constraint weights per axis: 0 none, 1 weak, 2 strict (from lower to higher class id)
+  std::array<std::vector<std::uint8_t>, 3> w;
+  for (int a = 0; a < 3; ++a)
+    w[a].assign(static_cast<std::size_t>(ax[a].num_classes()) * static_cast<std::size_t>(ax[a].num_classes()), 0);
+  auto strict = [&](int a, int from, int to) {
+    PC_REQUIRE(from < to, "strict constraint against coordinate order");
+    w[a][static_cast<std::size_t>(from) * static_cast<std::size_t>(ax[a].num_classes()) + static_cast<std::size_t>(to)] = 2;
+  };
+  std::array<std::vector<std::array<int, 2>>, 3> weak_pairs;
   for (std::size_t e = 0; e < s.edges.size(); ++e) {
     const auto& ed = s.edges[e];
     SurfaceBox b;
@@ -274,10 +282,13 @@ CornerSystem build_corner_system(const PolycubeStructure& s, double scale, const
     }
     if (b.lo[ed.axis] == b.hi[ed.axis])
       throw core::GeometryError("polycube edge " + std::to_string(e) + " has zero length");
-    strict_pairs[ed.axis].push_back({b.lo[ed.axis], b.hi[ed.axis]});  // thesis eq. 3.3
+    strict(ed.axis, b.lo[ed.axis], b.hi[ed.axis]);  // thesis eq. 3.3
     sys.boxes.push_back(b);
   }
   for (std::size_t p = 0; p < s.charts.size(); ++p) chart_rectangles(s, ax, static_cast<int>(p), sys.boxes, weak_pairs);
+  for (std::size_t i = 0; i < sys.boxes.size(); ++i)
+    if (sys.boxes[i].kind == SurfaceBox::Kind::Rectangle && s.charts[sys.boxes[i].id].axis == 0)
+      sys.x_rectangles.push_back(static_cast<int>(i));
 
   // Separation (see the header): pairs of corners/edges as boxes, and corner/edge vs chart.
   const std::size_t nce = s.corners.size() + s.edges.size();  // boxes [0, nce) are corners and edges
@@ -293,7 +304,7 @@ CornerSystem build_corner_system(const PolycubeStructure& s, double scale, const
   // gap of box i below box j along a (> 0: separated), both orientations
   auto gap = [&](int a, std::size_t i, std::size_t j) { return lo_c[a][j] - hi_c[a][i]; };
   auto separate = [&](int a, std::size_t i, std::size_t j) {  // i below j along a
-    strict_pairs[a].push_back({sys.boxes[i].hi[a], sys.boxes[j].lo[a]});
+    strict(a, sys.boxes[i].hi[a], sys.boxes[j].lo[a]);
   };
   // 1. corner/edge vs corner/edge
   for (std::size_t i = 0; i < (options.separation ? nce : 0); ++i)
@@ -359,8 +370,8 @@ CornerSystem build_corner_system(const PolycubeStructure& s, double scale, const
       if (!outside && normal <= 0.0) continue;  // touching in the input: incident
       ++sys.separation_pairs;
       if (!outside || normal >= inplane) {
-        if (lo_c[a][i] > L) strict_pairs[a].push_back({lvl, sys.boxes[i].lo[a]});
-        else strict_pairs[a].push_back({sys.boxes[i].hi[a], lvl});
+        if (lo_c[a][i] > L) strict(a, lvl, sys.boxes[i].lo[a]);
+        else strict(a, sys.boxes[i].hi[a], lvl);
         continue;
       }
       for (int e : pe) {
@@ -382,21 +393,16 @@ CornerSystem build_corner_system(const PolycubeStructure& s, double scale, const
     }
   }
 
-  // per axis: dense weights, transitive reduction
+  // per axis: weak constraints, transitive reduction
   for (int a = 0; a < 3; ++a) {
     const int n = ax[a].num_classes();
-    std::vector<std::uint8_t> w(static_cast<std::size_t>(n) * n, 0);
     for (const auto& [f, t] : weak_pairs[a]) {
       PC_REQUIRE(f < t, "weak constraint against coordinate order");
-      auto& x = w[static_cast<std::size_t>(f) * n + t];
+      auto& x = w[a][static_cast<std::size_t>(f) * n + t];
       x = std::max<std::uint8_t>(x, 1);
     }
-    for (const auto& [f, t] : strict_pairs[a]) {
-      PC_REQUIRE(f < t, "strict constraint against coordinate order");
-      w[static_cast<std::size_t>(f) * n + t] = 2;
-    }
-    ax[a].constraints_before_reduction = static_cast<int>(std::count_if(w.begin(), w.end(), [](auto x) { return x != 0; }));
-    ax[a].constraints = reduce(n, w);
+    ax[a].constraints_before_reduction = static_cast<int>(std::count_if(w[a].begin(), w[a].end(), [](auto x) { return x != 0; }));
+    ax[a].constraints = reduce(n, w[a]);
   }
   return sys;
 }
@@ -463,8 +469,9 @@ std::vector<std::string> find_contacts(const CornerSystem& sys, const PolycubeSt
 bool inside_polycube(const CornerSystem& sys, const PolycubeStructure& s,
                      const std::array<std::vector<double>, 3>& values, const core::Vec3& p) {
   bool in = false;
-  for (const SurfaceBox& b : sys.boxes) {
-    if (b.kind != SurfaceBox::Kind::Rectangle || s.charts[b.id].axis != 0) continue;
+  (void)s;
+  for (int r : sys.x_rectangles) {
+    const SurfaceBox& b = sys.boxes[r];
     if (!(values[0][b.lo[0]] >= p.x())) continue;  // chart at or beyond the point: ray from p − δ·e_x
     const double y0 = values[1][b.lo[1]], y1 = values[1][b.hi[1]];
     const double z0 = values[2][b.lo[2]], z1 = values[2][b.hi[2]];

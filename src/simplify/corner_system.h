@@ -98,6 +98,7 @@ struct CornerSystem {
   //! corners, then edges, then chart rectangles (each chart split into maximal row runs of the
   //! grid of its own corner coordinates; used to classify points, inside_polycube())
   std::vector<SurfaceBox> boxes;
+  std::vector<int> x_rectangles;      //!< indices into boxes of the rectangles of x charts
   long long separation_pairs = 0;     //!< element pairs that received separation constraints
 };
 

@@ -23,8 +23,9 @@ core::HexMesh plane_grid(const CornerSystem& sys, const structure::PolycubeStruc
     double x, y0, y1, z0, z1;
   };
   std::vector<Rect> rects;
-  for (const auto& b : sys.boxes)
-    if (b.kind == SurfaceBox::Kind::Rectangle && s.charts[b.id].axis == 0)
+  (void)s;
+  for (int r : sys.x_rectangles)
+    if (const auto& b = sys.boxes[r]; true)
       rects.push_back({values[0][b.lo[0]], values[1][b.lo[1]], values[1][b.hi[1]], values[2][b.lo[2]], values[2][b.hi[2]]});
   std::vector<char> inside(static_cast<std::size_t>((nx - 1) * (ny - 1) * (nz - 1)), 0);
   auto cid = [&](int i, int j, int k) { return (static_cast<std::size_t>(k) * (ny - 1) + j) * (nx - 1) + i; };

@@ -107,7 +107,7 @@ struct UntangleOptions {
   double min_det_target = 0.0;
   //! Give up when the number of inverted elements has not decreased for this many outer
   //! iterations (0 = never).
-  int stall_iterations = 40;
+  int stall_iterations = 20;
   std::vector<Attraction> attractions;  //!< optional extra quadratic terms
 };
 

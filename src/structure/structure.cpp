@@ -20,7 +20,9 @@ using core::Vec3;
 //! Union-find; roots are the lowest members.
 class DisjointSets {
  public:
-  explicit DisjointSets(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  explicit DisjointSets(std::size_t n) : parent_(n) {
+    std::iota(parent_.begin(), parent_.end(), 0);
+  }
   int find(int x) {
     while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
     return x;
@@ -58,11 +60,15 @@ double loop_area(const std::vector<int>& verts, const std::vector<Vec3>& pos, in
 }  // namespace
 
 int PolycubeStructure::num_convex_edges() const {
-  return static_cast<int>(std::count_if(edges.begin(), edges.end(), [](const Edge& e) { return e.convex; }));
+  return static_cast<int>(
+      std::count_if(edges.begin(), edges.end(), [](const Edge& e) { return e.convex; }));
 }
-int PolycubeStructure::num_concave_edges() const { return static_cast<int>(edges.size()) - num_convex_edges(); }
+int PolycubeStructure::num_concave_edges() const {
+  return static_cast<int>(edges.size()) - num_convex_edges();
+}
 int PolycubeStructure::num_faces_with_holes() const {
-  return static_cast<int>(std::count_if(faces.begin(), faces.end(), [](const Face& f) { return f.num_holes() > 0; }));
+  return static_cast<int>(
+      std::count_if(faces.begin(), faces.end(), [](const Face& f) { return f.num_holes() > 0; }));
 }
 double PolycubeStructure::max_chart_deviation() const {
   double d = 0.0;
@@ -87,7 +93,8 @@ PolycubeStructure extract_structure(const core::PolycubeMap& map) {
     const auto& t = surf.cells[f];
     s.triangles[f] = {vmap[t[0]], vmap[t[1]], vmap[t[2]]};
     const Vec3& a = surf.points[t[0]];
-    s.triangle_label[f] = core::dominant_axis_label((surf.points[t[1]] - a).cross(surf.points[t[2]] - a));
+    s.triangle_label[f] =
+        core::dominant_axis_label((surf.points[t[1]] - a).cross(surf.points[t[2]] - a));
   }
 
   // 2. charts: components of equally labelled triangles through manifold edges
@@ -95,7 +102,8 @@ PolycubeStructure extract_structure(const core::PolycubeMap& map) {
   const core::Adjacency ec = core::edge_cells(et);
   DisjointSets ds(static_cast<std::size_t>(nf));
   for (int e = 0; e < et.num_edges(); ++e)
-    if (ec.degree(e) == 2 && s.triangle_label[ec[e][0]] == s.triangle_label[ec[e][1]]) ds.unite(ec[e][0], ec[e][1]);
+    if (ec.degree(e) == 2 && s.triangle_label[ec[e][0]] == s.triangle_label[ec[e][1]])
+      ds.unite(ec[e][0], ec[e][1]);
   s.triangle_chart.assign(static_cast<std::size_t>(nf), -1);
   std::vector<int> root_chart(static_cast<std::size_t>(nf), -1);
   for (int f = 0; f < nf; ++f) {
@@ -123,7 +131,8 @@ PolycubeStructure extract_structure(const core::PolycubeMap& map) {
     double sum = 0.0;
     for (int v : verts) sum += pos[v][c.axis];
     c.coordinate = sum / static_cast<double>(verts.size());
-    for (int v : verts) c.deviation = std::max(c.deviation, std::abs(pos[v][c.axis] - c.coordinate));
+    for (int v : verts)
+      c.deviation = std::max(c.deviation, std::abs(pos[v][c.axis] - c.coordinate));
   }
 
   // 3. corners: vertices where three or more charts meet
@@ -193,7 +202,8 @@ PolycubeStructure extract_structure(const core::PolycubeMap& map) {
     s.edges.push_back(std::move(pe));
   };
   for (const Corner& c : s.corners) {
-    const auto lv = static_cast<int>(std::lower_bound(vmap.begin(), vmap.end(), c.vertex) - vmap.begin());
+    const auto lv =
+        static_cast<int>(std::lower_bound(vmap.begin(), vmap.end(), c.vertex) - vmap.begin());
     for (int e : vfeat[lv])
       if (!used[e]) trace(lv, e);
   }
@@ -206,8 +216,10 @@ PolycubeStructure extract_structure(const core::PolycubeMap& map) {
     const Chart& ca = s.charts[pe.charts[0]];
     const Chart& cb = s.charts[pe.charts[1]];
     pe.axis = ca.axis == cb.axis ? -1 : 3 - ca.axis - cb.axis;
-    for (std::size_t k = 0; k + 1 < pe.vertices.size(); ++k) pe.length += (pos[pe.vertices[k + 1]] - pos[pe.vertices[k]]).norm();
-    if (pe.vertices.size() > 2 && pe.corners[0] < 0) pe.length += (pos[pe.vertices.front()] - pos[pe.vertices.back()]).norm();
+    for (std::size_t k = 0; k + 1 < pe.vertices.size(); ++k)
+      pe.length += (pos[pe.vertices[k + 1]] - pos[pe.vertices[k]]).norm();
+    if (pe.vertices.size() > 2 && pe.corners[0] < 0)
+      pe.length += (pos[pe.vertices.front()] - pos[pe.vertices.back()]).norm();
     // Convex when the triangle of chart b leaves the edge on the inner side of chart a's plane.
     double vote = 0.0;
     for (int e : edge_mesh_edges[i]) {
@@ -240,7 +252,8 @@ PolycubeStructure extract_structure(const core::PolycubeMap& map) {
     for (int f : ch.triangles)
       for (int k = 0; k < 3; ++k) {
         const int e = et.cell_edges[f][k];
-        const bool interior = ec.degree(e) == 2 && s.triangle_chart[ec[e][0]] == static_cast<int>(ci) &&
+        const bool interior = ec.degree(e) == 2 &&
+                              s.triangle_chart[ec[e][0]] == static_cast<int>(ci) &&
                               s.triangle_chart[ec[e][1]] == static_cast<int>(ci);
         if (!interior) half.push_back({s.triangles[f][k], s.triangles[f][(k + 1) % 3]});
       }
@@ -276,9 +289,11 @@ PolycubeStructure extract_structure(const core::PolycubeMap& map) {
           start = k;
         }
       }
-      if (best_corner < 0) start = static_cast<std::size_t>(
-          std::min_element(loop.vertices.begin(), loop.vertices.end()) - loop.vertices.begin());
-      std::rotate(loop.vertices.begin(), loop.vertices.begin() + static_cast<std::ptrdiff_t>(start), loop.vertices.end());
+      if (best_corner < 0)
+        start = static_cast<std::size_t>(
+            std::min_element(loop.vertices.begin(), loop.vertices.end()) - loop.vertices.begin());
+      std::rotate(loop.vertices.begin(), loop.vertices.begin() + static_cast<std::ptrdiff_t>(start),
+                  loop.vertices.end());
       for (int v : loop.vertices)
         if (s.vertex_corner[v] >= 0) loop.corners.push_back(s.vertex_corner[v]);
       loop.area = loop.vertices.size() >= 3 ? loop_area(loop.vertices, pos, ch.axis, ch.sign) : 0.0;

@@ -25,30 +25,31 @@ namespace polycube::structure {
 
 //! One closed boundary loop of a chart.
 struct Loop {
-  std::vector<int> vertices;  //!< map vertices along the loop (the first is not repeated at the end)
-  std::vector<int> corners;   //!< corner ids met along the loop, in order (the polygon's vertices)
-  double area = 0.0;          //!< signed area enclosed, seen from outside: > 0 outer loop, < 0 hole
+  std::vector<int>
+      vertices;              //!< map vertices along the loop (the first is not repeated at the end)
+  std::vector<int> corners;  //!< corner ids met along the loop, in order (the polygon's vertices)
+  double area = 0.0;         //!< signed area enclosed, seen from outside: > 0 outer loop, < 0 hole
 };
 
 //! A planar region of the polycube surface with one label.
 struct Chart {
-  int label = 0;              //!< 0..5 = +X, -X, +Y, -Y, +Z, -Z
-  int axis = 0;               //!< 0, 1, 2 = x, y, z (normal direction)
-  int sign = 1;               //!< +1 or -1: the outward normal is sign * e_axis
-  double coordinate = 0.0;    //!< mean coordinate of its vertices along axis (the plane)
-  double deviation = 0.0;     //!< largest |vertex coordinate - coordinate| (planarity)
-  double area = 0.0;          //!< total area of its triangles
-  std::vector<int> triangles; //!< indices into PolycubeStructure::triangles
+  int label = 0;               //!< 0..5 = +X, -X, +Y, -Y, +Z, -Z
+  int axis = 0;                //!< 0, 1, 2 = x, y, z (normal direction)
+  int sign = 1;                //!< +1 or -1: the outward normal is sign * e_axis
+  double coordinate = 0.0;     //!< mean coordinate of its vertices along axis (the plane)
+  double deviation = 0.0;      //!< largest |vertex coordinate - coordinate| (planarity)
+  double area = 0.0;           //!< total area of its triangles
+  std::vector<int> triangles;  //!< indices into PolycubeStructure::triangles
 };
 
 //! A chain of boundary edges where two charts meet, from corner to corner.
 struct Edge {
-  int axis = -1;                      //!< direction 0, 1, 2; -1 when the two charts share an axis (invalid)
-  std::array<int, 2> charts{-1, -1};  //!< the two charts (sorted)
-  std::array<int, 2> corners{-1, -1}; //!< corner ids at the two ends; -1, -1 for a closed loop
-  std::vector<int> vertices;          //!< map vertices from corners[0] to corners[1]
-  bool convex = true;                 //!< false: concave (reflex) edge
-  double length = 0.0;                //!< polycube-space length of the chain
+  int axis = -1;  //!< direction 0, 1, 2; -1 when the two charts share an axis (invalid)
+  std::array<int, 2> charts{-1, -1};   //!< the two charts (sorted)
+  std::array<int, 2> corners{-1, -1};  //!< corner ids at the two ends; -1, -1 for a closed loop
+  std::vector<int> vertices;           //!< map vertices from corners[0] to corners[1]
+  bool convex = true;                  //!< false: concave (reflex) edge
+  double length = 0.0;                 //!< polycube-space length of the chain
 };
 
 //! A boundary vertex where three or more charts meet.
@@ -63,7 +64,9 @@ struct Corner {
 struct Face {
   int chart = -1;
   std::vector<Loop> loops;  //!< loops[0] is the outer loop, then the holes
-  [[nodiscard]] int num_holes() const { return loops.empty() ? 0 : static_cast<int>(loops.size()) - 1; }
+  [[nodiscard]] int num_holes() const {
+    return loops.empty() ? 0 : static_cast<int>(loops.size()) - 1;
+  }
 };
 
 //! The whole structure.
@@ -75,8 +78,8 @@ struct PolycubeStructure {
   std::vector<Chart> charts;
   std::vector<Edge> edges;
   std::vector<Corner> corners;
-  std::vector<Face> faces;          //!< one per chart, same order
-  std::vector<int> vertex_corner;   //!< #V corner id of each map vertex, or -1
+  std::vector<Face> faces;         //!< one per chart, same order
+  std::vector<int> vertex_corner;  //!< #V corner id of each map vertex, or -1
 
   [[nodiscard]] int num_convex_edges() const;
   [[nodiscard]] int num_concave_edges() const;

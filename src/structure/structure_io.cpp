@@ -21,7 +21,9 @@ std::string structure_to_vtk(const PolycubeStructure& s, const std::vector<core:
   for (std::size_t f = 0; f < s.triangles.size(); ++f) {
     const int c = s.triangle_chart[f];
     const Chart& ch = s.charts[static_cast<std::size_t>(c)];
-    cells.push_back({5, {s.triangles[f][0], s.triangles[f][1], s.triangles[f][2]}, {0, c, ch.axis, ch.label, 0}});
+    cells.push_back({5,
+                     {s.triangles[f][0], s.triangles[f][1], s.triangles[f][2]},
+                     {0, c, ch.axis, ch.label, 0}});
   }
   for (std::size_t e = 0; e < s.edges.size(); ++e) {
     const Edge& pe = s.edges[e];
@@ -43,10 +45,13 @@ std::string structure_to_vtk(const PolycubeStructure& s, const std::vector<core:
   for (int v : used)
     if (v < 0 || v >= static_cast<int>(positions.size()))
       throw core::InputError("structure_to_vtk: vertex " + std::to_string(v) + " has no position");
-  auto local = [&](int v) { return static_cast<int>(std::lower_bound(used.begin(), used.end(), v) - used.begin()); };
+  auto local = [&](int v) {
+    return static_cast<int>(std::lower_bound(used.begin(), used.end(), v) - used.begin());
+  };
 
-  std::string out = "# vtk DataFile Version 3.0\npolycube structure: charts, edges, corners\nASCII\n"
-                    "DATASET UNSTRUCTURED_GRID\n";
+  std::string out =
+      "# vtk DataFile Version 3.0\npolycube structure: charts, edges, corners\nASCII\n"
+      "DATASET UNSTRUCTURED_GRID\n";
   out += fmt::format("POINTS {} double\n", used.size());
   for (int v : used) {
     const core::Vec3& p = positions[static_cast<std::size_t>(v)];

@@ -56,14 +56,15 @@ std::string fmt_double(double v) {
 }
 
 //! Orientation checks in one space.
-void check_orientation(const core::PolycubeMap& map, const std::vector<Vec3>& pos, const char* space,
-                       const ValidateOptions& opt, int& inverted, int& flat, std::vector<std::string>& failures) {
+void check_orientation(const core::PolycubeMap& map, const std::vector<Vec3>& pos,
+                       const char* space, const ValidateOptions& opt, int& inverted, int& flat,
+                       std::vector<std::string>& failures) {
   Listing inv;
   Listing fl;
   for (int t = 0; t < map.num_tets(); ++t) {
     const auto& c = map.tets[static_cast<std::size_t>(t)];
-    const auto o = CGAL::orientation(cgal_point(pos[c[0]]), cgal_point(pos[c[1]]), cgal_point(pos[c[2]]),
-                                     cgal_point(pos[c[3]]));
+    const auto o = CGAL::orientation(cgal_point(pos[c[0]]), cgal_point(pos[c[1]]),
+                                     cgal_point(pos[c[2]]), cgal_point(pos[c[3]]));
     if (o == CGAL::NEGATIVE)
       inv.add(opt.max_listed, "tet " + std::to_string(t));
     else if (o == CGAL::COPLANAR)
@@ -72,12 +73,15 @@ void check_orientation(const core::PolycubeMap& map, const std::vector<Vec3>& po
   inverted = inv.count;
   flat = fl.count;
   if (inv.count > 0) {
-    std::string msg = plural(inv.count, "tet is", "tets are") + " inverted in " + space + " space (" + inv.joined() + ")";
-    if (inv.count == map.num_tets()) msg += "; every tet is negatively oriented: the vertex order is mirrored";
+    std::string msg = plural(inv.count, "tet is", "tets are") + " inverted in " + space +
+                      " space (" + inv.joined() + ")";
+    if (inv.count == map.num_tets())
+      msg += "; every tet is negatively oriented: the vertex order is mirrored";
     failures.push_back(msg);
   }
   if (fl.count > 0)
-    failures.push_back(plural(fl.count, "tet is", "tets are") + " flat (zero volume) in " + space + " space (" + fl.joined() + ")");
+    failures.push_back(plural(fl.count, "tet is", "tets are") + " flat (zero volume) in " + space +
+                       " space (" + fl.joined() + ")");
 }
 
 }  // namespace
@@ -92,7 +96,8 @@ MapDiagnosis diagnose_map(const core::PolycubeMap& map, const ValidateOptions& o
   // 1. orientation in both spaces (exact predicates)
   if (options.check_model)
     check_orientation(map, map.model, "model", options, d.inverted_model, d.flat_model, d.failures);
-  check_orientation(map, map.polycube, "polycube", options, d.inverted_polycube, d.flat_polycube, d.failures);
+  check_orientation(map, map.polycube, "polycube", options, d.inverted_polycube, d.flat_polycube,
+                    d.failures);
 
   // 2. boundary faces: tet faces of exactly one tet (sort-based, deterministic)
   const int nt = map.num_tets();
@@ -125,8 +130,9 @@ MapDiagnosis diagnose_map(const core::PolycubeMap& map, const ValidateOptions& o
         if (k > i) tets += ' ';
         tets += std::to_string(slots[k].slot / 4);
       }
-      shared.add(max_listed, "face " + std::to_string(slots[i].key[0]) + "-" + std::to_string(slots[i].key[1]) +
-                                 "-" + std::to_string(slots[i].key[2]) + " in tets " + tets);
+      shared.add(max_listed, "face " + std::to_string(slots[i].key[0]) + "-" +
+                                 std::to_string(slots[i].key[1]) + "-" +
+                                 std::to_string(slots[i].key[2]) + " in tets " + tets);
     }
     i = j;
   }
@@ -156,21 +162,23 @@ MapDiagnosis diagnose_map(const core::PolycubeMap& map, const ValidateOptions& o
     const double span = hi - lo;
     d.max_axis_deviation = std::max(d.max_axis_deviation, span);
     if (!(span <= d.axis_tolerance))
-      tilted.add(max_listed, "triangle " + std::to_string(tris[f][0]) + "-" + std::to_string(tris[f][1]) + "-" +
-                                 std::to_string(tris[f][2]) + " of tet " + std::to_string(boundary_slots[f] / 4) +
-                                 " spans " + fmt_double(span) + " along " + kAxisNames[axis]);
+      tilted.add(max_listed, "triangle " + std::to_string(tris[f][0]) + "-" +
+                                 std::to_string(tris[f][1]) + "-" + std::to_string(tris[f][2]) +
+                                 " of tet " + std::to_string(boundary_slots[f] / 4) + " spans " +
+                                 fmt_double(span) + " along " + kAxisNames[axis]);
   }
   d.non_axis_aligned = tilted.count;
   if (tilted.count > 0)
-    d.failures.push_back(plural(tilted.count, "polycube boundary triangle is", "polycube boundary triangles are") +
-                         " not axis-aligned (tolerance " + fmt_double(d.axis_tolerance) + " = " +
-                         fmt_double(options.axis_tolerance) + " of the bounding-box diagonal): " + tilted.joined());
+    d.failures.push_back(
+        plural(tilted.count, "polycube boundary triangle is", "polycube boundary triangles are") +
+        " not axis-aligned (tolerance " + fmt_double(d.axis_tolerance) + " = " +
+        fmt_double(options.axis_tolerance) + " of the bounding-box diagonal): " + tilted.joined());
 
   // 4. closed 2-manifold polycube surface
   if (shared.count > 0)
     d.failures.push_back("the polycube surface is not closed: " +
-                         plural(shared.count, "tet face is", "tet faces are") + " shared by more than two tets (" +
-                         shared.joined() + ")");
+                         plural(shared.count, "tet face is", "tet faces are") +
+                         " shared by more than two tets (" + shared.joined() + ")");
   if (tris.empty()) {
     d.failures.push_back("the polycube surface is empty: every tet face is shared");
   } else {
@@ -213,9 +221,11 @@ MapDiagnosis diagnose_map(const core::PolycubeMap& map, const ValidateOptions& o
       std::size_t j = i;
       while (j < es.size() && es[j].key == es[i].key) ++j;
       const int n = static_cast<int>(j - i);
-      const std::string name = "edge " + std::to_string(es[i].key[0]) + "-" + std::to_string(es[i].key[1]);
+      const std::string name =
+          "edge " + std::to_string(es[i].key[0]) + "-" + std::to_string(es[i].key[1]);
       if (n % 2 == 1)
-        open.add(max_listed, name + " (" + std::to_string(n) + " triangle" + (n == 1 ? "" : "s") + ")");
+        open.add(max_listed,
+                 name + " (" + std::to_string(n) + " triangle" + (n == 1 ? "" : "s") + ")");
       else if (n >= 4)
         nonman.add(max_listed, name + " (" + std::to_string(n) + " triangles)");
       else {
@@ -233,8 +243,8 @@ MapDiagnosis diagnose_map(const core::PolycubeMap& map, const ValidateOptions& o
                            " an odd number of boundary triangles (" + open.joined() + ")");
     if (nonman.count > 0)
       d.failures.push_back("the polycube surface is not manifold: " +
-                           plural(nonman.count, "edge has", "edges have") + " four or more boundary triangles (" +
-                           nonman.joined() + ")");
+                           plural(nonman.count, "edge has", "edges have") +
+                           " four or more boundary triangles (" + nonman.joined() + ")");
     // Vertices: count distinct fans (roots) among the corners of each vertex.
     std::vector<std::array<int, 2>> vr;  // (vertex, root)
     vr.reserve(ncorner);
@@ -247,7 +257,8 @@ MapDiagnosis diagnose_map(const core::PolycubeMap& map, const ValidateOptions& o
       std::size_t j = i;
       while (j < vr.size() && vr[j][0] == vr[i][0]) ++j;
       if (j - i > 1 && open.count == 0 && nonman.count == 0)
-        pinched.add(max_listed, "vertex " + std::to_string(vr[i][0]) + " (" + std::to_string(j - i) + " fans)");
+        pinched.add(max_listed,
+                    "vertex " + std::to_string(vr[i][0]) + " (" + std::to_string(j - i) + " fans)");
       i = j;
     }
     d.nonmanifold_vertices = pinched.count;

@@ -34,20 +34,21 @@ struct ValidateOptions {
 
 //! What diagnose_map found. Every count is 0 for a valid map.
 struct MapDiagnosis {
-  int tets = 0;                    //!< #T
-  int vertices = 0;                //!< #V
-  int boundary_triangles = 0;      //!< tet faces of exactly one tet
-  int inverted_model = 0;          //!< tets with negative orientation in model space
-  int flat_model = 0;              //!< tets with zero orientation (coplanar) in model space
-  int inverted_polycube = 0;       //!< same in polycube space
-  int flat_polycube = 0;           //!< same in polycube space
-  int non_axis_aligned = 0;        //!< polycube boundary triangles not axis-aligned
-  int overshared_faces = 0;        //!< tet faces shared by three or more tets
-  int open_edges = 0;              //!< boundary edges with an odd number of boundary triangles
-  int nonmanifold_edges = 0;       //!< boundary edges with four or more boundary triangles
-  int nonmanifold_vertices = 0;    //!< boundary vertices whose triangles form several fans
-  double axis_tolerance = 0.0;     //!< the absolute axis-alignment tolerance used (polycube units)
-  double max_axis_deviation = 0.0; //!< largest coordinate span of a boundary triangle along its axis
+  int tets = 0;                  //!< #T
+  int vertices = 0;              //!< #V
+  int boundary_triangles = 0;    //!< tet faces of exactly one tet
+  int inverted_model = 0;        //!< tets with negative orientation in model space
+  int flat_model = 0;            //!< tets with zero orientation (coplanar) in model space
+  int inverted_polycube = 0;     //!< same in polycube space
+  int flat_polycube = 0;         //!< same in polycube space
+  int non_axis_aligned = 0;      //!< polycube boundary triangles not axis-aligned
+  int overshared_faces = 0;      //!< tet faces shared by three or more tets
+  int open_edges = 0;            //!< boundary edges with an odd number of boundary triangles
+  int nonmanifold_edges = 0;     //!< boundary edges with four or more boundary triangles
+  int nonmanifold_vertices = 0;  //!< boundary vertices whose triangles form several fans
+  double axis_tolerance = 0.0;   //!< the absolute axis-alignment tolerance used (polycube units)
+  double max_axis_deviation =
+      0.0;  //!< largest coordinate span of a boundary triangle along its axis
   //! One message per failed check, naming the failure and the first offending elements.
   std::vector<std::string> failures;
 

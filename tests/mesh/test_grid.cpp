@@ -4,11 +4,12 @@
 #include "core/errors.h"
 #include "core/topology.h"
 #include "mesh/grid.h"
+#include "mesh/tet_locator.h"
 #include "structure/analytic_maps.h"
 #include "structure/validate.h"
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -37,7 +38,8 @@ long long count_cells(const std::function<bool(const Vec3&)>& inside, int lo, in
 //! The lattice structure of the result: every hex is a positively oriented unit cube of the
 //! lattice, inside according to `inside` (lattice coordinates), no cell twice, and the count
 //! equals the brute-force count of inside cells.
-void expect_lattice(const GridResult& r, const std::function<bool(const Vec3&)>& inside, int lo, int hi) {
+void expect_lattice(const GridResult& r, const std::function<bool(const Vec3&)>& inside, int lo,
+                    int hi) {
   const auto& hp = r.hex_polycube;
   std::set<std::array<long long, 3>> seen;
   for (const auto& h : hp.cells) {
@@ -50,10 +52,13 @@ void expect_lattice(const GridResult& r, const std::function<bool(const Vec3&)>&
     for (int i = 0; i < 8; ++i) {
       const auto& nb = core::kHexCornerNeighbors[i];
       const Vec3& p = hp.points[h[i]];
-      EXPECT_GT((hp.points[h[nb[0]]] - p).dot((hp.points[h[nb[1]]] - p).cross(hp.points[h[nb[2]]] - p)), 0.0);
+      EXPECT_GT(
+          (hp.points[h[nb[0]]] - p).dot((hp.points[h[nb[1]]] - p).cross(hp.points[h[nb[2]]] - p)),
+          0.0);
     }
     EXPECT_TRUE(inside(p0 + Vec3(0.5, 0.5, 0.5)));
-    EXPECT_TRUE(seen.insert({std::llround(p0.x()), std::llround(p0.y()), std::llround(p0.z())}).second)
+    EXPECT_TRUE(
+        seen.insert({std::llround(p0.x()), std::llround(p0.y()), std::llround(p0.z())}).second)
         << "duplicate hex";
   }
   EXPECT_EQ(static_cast<long long>(hp.cells.size()), count_cells(inside, lo, hi));
@@ -83,7 +88,8 @@ double max_error(const GridResult& r, const std::function<Vec3(const Vec3&)>& f)
 std::function<bool(const Vec3&)> l_inside(double s) {
   return [s](const Vec3& c) {
     const Vec3 p = c / s;
-    return p.x() > 0 && p.y() > 0 && p.z() > 0 && p.x() < 2 && p.y() < 2 && p.z() < 1 && (p.x() < 1 || p.y() < 1);
+    return p.x() > 0 && p.y() > 0 && p.z() > 0 && p.x() < 2 && p.y() < 2 && p.z() < 1 &&
+           (p.x() < 1 || p.y() < 1);
   };
 }
 
@@ -105,14 +111,17 @@ TEST(Grid, IdentityLShape) {
 }
 
 TEST(Grid, GlobalShearIsExact) {
-  auto affine = [](const Vec3& p) { return Vec3(p.x() + 0.3 * p.z() + 1.0, 0.8 * p.y() + 0.2 * p.x(), 1.5 * p.z() - 2.0); };
+  auto affine = [](const Vec3& p) {
+    return Vec3(p.x() + 0.3 * p.z() + 1.0, 0.8 * p.y() + 0.2 * p.x(), 1.5 * p.z() - 2.0);
+  };
   const GridMap g = test::l_shape(1, affine);
   ASSERT_TRUE(structure::diagnose_map(g.map).valid());
   for (double s : {1.0, 3.0, 5.0}) {
     GridOptions o;
     o.scale = s;
     const GridResult r = grid_polycube(g.map, o);
-    EXPECT_EQ(r.hex_polycube.cells.size(), static_cast<std::size_t>(std::llround(test::kLVolume * s * s * s)));
+    EXPECT_EQ(r.hex_polycube.cells.size(),
+              static_cast<std::size_t>(std::llround(test::kLVolume * s * s * s)));
     expect_lattice(r, l_inside(s), -1, static_cast<int>(2 * s) + 2);
     expect_quads(r, std::llround(test::kLArea * s * s));
     EXPECT_LT(max_error(r, [&](const Vec3& q) { return affine(q / s); }), 1e-9) << "scale " << s;
@@ -122,7 +131,9 @@ TEST(Grid, GlobalShearIsExact) {
 
 TEST(Grid, PiecewiseAffineShearIsExact) {
   // shear only above z = 0.5, a plane made of tet faces of the r = 2 grid: affine on every tet
-  auto shear = [](const Vec3& p) { return p.z() > 0.5 ? Vec3(p.x() + 0.6 * (p.z() - 0.5), p.y(), p.z()) : p; };
+  auto shear = [](const Vec3& p) {
+    return p.z() > 0.5 ? Vec3(p.x() + 0.6 * (p.z() - 0.5), p.y(), p.z()) : p;
+  };
   const GridMap g = test::l_shape(2, shear);
   ASSERT_TRUE(structure::diagnose_map(g.map).valid());
   GridOptions o;
@@ -171,21 +182,27 @@ TEST(Grid, BoxToCylinder) {
     const double f = r2 > 0 ? std::max(std::abs(p.x()), std::abs(p.y())) / r2 : 1.0;
     return Vec3(f * p.x(), f * p.y(), p.z());
   };
-  const GridMap g = test::make_grid_map(test::uniform(-1, 1, 8), test::uniform(-1, 1, 8), test::uniform(0, 1, 4),
-                                        [](const Vec3&) { return true; }, disc);
+  const GridMap g = test::make_grid_map(
+      test::uniform(-1, 1, 8), test::uniform(-1, 1, 8), test::uniform(0, 1, 4),
+      [](const Vec3&) { return true; }, disc);
   ASSERT_TRUE(structure::diagnose_map(g.map).valid());
   GridOptions o;
   o.scale = 3;
   const GridResult r = grid_polycube(g.map, o);
   EXPECT_EQ(r.hex_polycube.cells.size(), 6u * 6u * 3u);
-  expect_lattice(r, [](const Vec3& c) { return std::abs(c.x()) < 3 && std::abs(c.y()) < 3 && c.z() > 0 && c.z() < 3; },
-                 -4, 4);
+  expect_lattice(
+      r,
+      [](const Vec3& c) {
+        return std::abs(c.x()) < 3 && std::abs(c.y()) < 3 && c.z() > 0 && c.z() < 3;
+      },
+      -4, 4);
   expect_quads(r, 2 * 36 + 4 * 18);
-  EXPECT_LT(max_error(r, [&](const Vec3& q) {
-              Vec3 out;
-              EXPECT_TRUE(g.pl_image(q / 3.0, out));
-              return out;
-            }),
+  EXPECT_LT(max_error(r,
+                      [&](const Vec3& q) {
+                        Vec3 out;
+                        EXPECT_TRUE(g.pl_image(q / 3.0, out));
+                        return out;
+                      }),
             1e-9);
   // the side of the box lands on the cylinder's side up to the chord error of the tet grid
   for (std::size_t v = 0; v < r.quad_polycube.points.size(); ++v) {
@@ -193,7 +210,8 @@ TEST(Grid, BoxToCylinder) {
     if (std::max(std::abs(q.x()), std::abs(q.y())) == 3.0) {
       const double rad = std::hypot(r.quad_model.points[v].x(), r.quad_model.points[v].y());
       EXPECT_LE(rad, 1.0 + 1e-12);
-      EXPECT_GT(rad, std::cos(M_PI / 16));  // chord of a grid step (1/8 of a quarter circle at worst)
+      EXPECT_GT(rad,
+                std::cos(M_PI / 16));  // chord of a grid step (1/8 of a quarter circle at worst)
     }
   }
 }
@@ -211,13 +229,18 @@ TEST(Grid, NonIntegerScaleWithoutCollapseIsExact) {
   EXPECT_GT(r.snapping.corners_moved, 0);
   EXPECT_NEAR(r.snapping.max_displacement, 0.5, 1e-12);
   auto snapped_l = [](const Vec3& c) {
-    return c.x() > 0 && c.y() > 0 && c.z() > 0 && c.x() < 5 && c.y() < 5 && c.z() < 3 && (c.x() < 3 || c.y() < 3);
+    return c.x() > 0 && c.y() > 0 && c.z() > 0 && c.x() < 5 && c.y() < 5 && c.z() < 3 &&
+           (c.x() < 3 || c.y() < 3);
   };
   expect_lattice(r, snapped_l, -1, 7);
   EXPECT_EQ(r.hex_polycube.cells.size(), 63u);
-  auto finv = [](double n) { return n <= 3 ? n / 3.0 : 1.0 + (n - 3.0) / 2.0; };  // 0->0, 3->1, 5->2
-  auto finv_z = [](double n) { return n / 3.0; };                                  // 0->0, 3->1
-  EXPECT_LT(max_error(r, [&](const Vec3& q) { return Vec3(finv(q.x()), finv(q.y()), finv_z(q.z())); }), 1e-9);
+  auto finv = [](double n) {
+    return n <= 3 ? n / 3.0 : 1.0 + (n - 3.0) / 2.0;
+  };                                               // 0->0, 3->1, 5->2
+  auto finv_z = [](double n) { return n / 3.0; };  // 0->0, 3->1
+  EXPECT_LT(
+      max_error(r, [&](const Vec3& q) { return Vec3(finv(q.x()), finv(q.y()), finv_z(q.z())); }),
+      1e-9);
 }
 
 TEST(Grid, TargetHexCount) {
@@ -227,12 +250,14 @@ TEST(Grid, TargetHexCount) {
     o.target_hexes = target;
     const GridResult r = grid_polycube(g.map, o);
     const double n = static_cast<double>(r.hex_polycube.cells.size());
-    EXPECT_LT(std::abs(n - target) / target, 0.25) << "target " << target << " got " << n << " at scale " << r.scale;
+    EXPECT_LT(std::abs(n - target) / target, 0.25)
+        << "target " << target << " got " << n << " at scale " << r.scale;
     // the count is the lattice's at the chosen scale
     const double s = r.scale;
     const double a = std::round(s), b = std::round(2 * s);
     auto inside = [&](const Vec3& c) {
-      return c.x() > 0 && c.y() > 0 && c.z() > 0 && c.x() < b && c.y() < b && c.z() < a && (c.x() < a || c.y() < a);
+      return c.x() > 0 && c.y() > 0 && c.z() > 0 && c.x() < b && c.y() < b && c.z() < a &&
+             (c.x() < a || c.y() < a);
     };
     EXPECT_EQ(static_cast<long long>(n), count_cells(inside, -1, static_cast<int>(b) + 1));
   }
@@ -244,12 +269,14 @@ TEST(Grid, TargetHexCount) {
 
 //! [0,2]x[0,1]x[0,1] with a step [0,1]x[0,1]x[1,1.3] on its left half.
 GridMap step_03() {
-  return test::make_grid_map(test::uniform(0, 2, 4), test::uniform(0, 1, 2), {0, 0.5, 1, 1.3},
-                             [](const Vec3& c) { return c.z() < 1 || c.x() < 1; }, [](const Vec3& p) { return p; });
+  return test::make_grid_map(
+      test::uniform(0, 2, 4), test::uniform(0, 1, 2), {0, 0.5, 1, 1.3},
+      [](const Vec3& c) { return c.z() < 1 || c.x() < 1; }, [](const Vec3& p) { return p; });
 }
 
 int count_kind(const SnapReport& r, DefectKind k) {
-  return static_cast<int>(std::count_if(r.defects.begin(), r.defects.end(), [&](const SnapDefect& d) { return d.kind == k; }));
+  return static_cast<int>(std::count_if(r.defects.begin(), r.defects.end(),
+                                        [&](const SnapDefect& d) { return d.kind == k; }));
 }
 
 TEST(Grid, NaiveSnappingMergesCorners) {
@@ -279,11 +306,16 @@ TEST(Grid, NaiveSnappingMergesCorners) {
 }
 
 TEST(Grid, NaiveSnappingPushesACornerOntoAFacet) {
-  // a C shape: base [0,3]x[0,1]x[0,1], pillar [0,1]x[0,1]x[1,1.4], overhang [0,2.4]x[0,1]x[1.4,2.4];
-  // at scale 1 the overhang's far bottom corners (2.4, *, 1.4) round onto the base's top (z = 1)
+  // a C shape: base [0,3]x[0,1]x[0,1], pillar [0,1]x[0,1]x[1,1.4], overhang
+  // [0,2.4]x[0,1]x[1.4,2.4]; at scale 1 the overhang's far bottom corners (2.4, *, 1.4) round onto
+  // the base's top (z = 1)
   const GridMap g = test::make_grid_map(
-      test::merged(test::uniform(0, 3, 6), {2.4}), test::uniform(0, 1, 2), test::merged(test::uniform(0, 1, 2), {1.4, 1.9, 2.4}),
-      [](const Vec3& c) { return c.z() < 1 || (c.z() < 1.4 && c.x() < 1) || (c.z() > 1.4 && c.z() < 2.4 && c.x() < 2.4); },
+      test::merged(test::uniform(0, 3, 6), {2.4}), test::uniform(0, 1, 2),
+      test::merged(test::uniform(0, 1, 2), {1.4, 1.9, 2.4}),
+      [](const Vec3& c) {
+        return c.z() < 1 || (c.z() < 1.4 && c.x() < 1) ||
+               (c.z() > 1.4 && c.z() < 2.4 && c.x() < 2.4);
+      },
       [](const Vec3& p) { return p; });
   ASSERT_TRUE(structure::diagnose_map(g.map).valid());
   GridOptions o;
@@ -296,7 +328,58 @@ TEST(Grid, NaiveSnappingPushesACornerOntoAFacet) {
       EXPECT_NEAR(d.positions[0].z(), 1.4, 1e-12);
       EXPECT_EQ(d.lattice, Vec3(2, d.lattice.y(), 1));
     }
-  EXPECT_NE(r.snapping.summary().find("pushed onto chart"), std::string::npos) << r.snapping.summary();
+  EXPECT_NE(r.snapping.summary().find("pushed onto chart"), std::string::npos)
+      << r.snapping.summary();
+}
+
+TEST(Grid, BenignCollapseIsNotADefect) {
+  // two separate towers on a base, 2.0 and 2.2 high: at scale 1 both tops round to z = 2, which
+  // aligns them (what simplification aims for) without breaking anything
+  const GridMap g = test::make_grid_map(
+      test::uniform(0, 3, 6), test::uniform(0, 1, 2), test::merged(test::uniform(0, 2, 4), {2.2}),
+      [](const Vec3& c) {
+        return c.z() < 1 || (c.z() < 2 && c.x() < 1) || (c.z() < 2.2 && c.x() > 2);
+      },
+      [](const Vec3& p) { return p; });
+  GridOptions o;
+  o.scale = 1;
+  const GridResult r = grid_polycube(g.map, o);
+  EXPECT_TRUE(r.snapping.deformed);
+  EXPECT_EQ(r.snapping.collapsed_levels, 1);
+  EXPECT_TRUE(r.snapping.ok()) << r.snapping.summary();
+  EXPECT_EQ(r.points_failed, 0);
+  EXPECT_EQ(r.hex_polycube.cells.size(), 5u);
+  EXPECT_EQ(r.inverted_model_hexes, 0);
+  // the lattice tops (z = 2) map back onto the model's tops: z = 2 on the left, 2.2 on the right
+  int tops = 0;
+  for (std::size_t v = 0; v < r.hex_polycube.points.size(); ++v) {
+    const Vec3& q = r.hex_polycube.points[v];
+    if (q.z() != 2.0) continue;
+    ++tops;
+    EXPECT_NEAR(r.hex_model.points[v].z(), q.x() <= 1 ? 2.0 : 2.2, 1e-9) << q.transpose();
+  }
+  EXPECT_EQ(tops, 8);
+}
+
+TEST(TetLocator, SharedFacesResolveDeterministically) {
+  const GridMap g = test::l_shape(1);
+  const TetLocator loc(g.map.tets, g.map.polycube, 1e-9);
+  // a grid vertex is shared by many tets: the answer is the same tet every time, and it holds the
+  // point
+  const auto a = loc.locate(Vec3(1, 1, 0.5));
+  const auto b = loc.locate(Vec3(1, 1, 0.5));
+  ASSERT_GE(a.tet, 0);
+  EXPECT_EQ(a.tet, b.tet);
+  EXPECT_GE(a.score, -1e-12);
+  EXPECT_NEAR(a.bary[0] + a.bary[1] + a.bary[2] + a.bary[3], 1.0, 1e-12);
+  // outside the L (in its notch) and outside the box: nothing
+  EXPECT_EQ(loc.locate(Vec3(1.5, 1.5, 0.5)).tet, -1);
+  EXPECT_EQ(loc.locate(Vec3(5, 5, 5)).tet, -1);
+  // on the boundary, within the tolerance: found
+  EXPECT_GE(loc.locate(Vec3(0.3, 0.2, 1.0 + 1e-10)).tet, 0);
+  EXPECT_EQ(loc.locate(Vec3(0.3, 0.2, 1.0 + 1e-6)).tet, -1);
+  // nearest: the closest tet even outside
+  EXPECT_GE(loc.nearest(Vec3(0.3, 0.2, 1.1), 2).tet, 0);
 }
 
 TEST(Grid, CoarserScaleOfTheStepIsClean) {

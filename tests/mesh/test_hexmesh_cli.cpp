@@ -37,8 +37,8 @@ std::string q(const fs::path& p) { return quoted(p); }
 
 TEST(HexmeshCli, WritesHexMeshAndTwin) {
   const Files f = write_map("hexmesh", l_shape(2).map);
-  const Cli r = run_polycube("hexmesh " + f.args + " -o " + q(f.dir / "hex.mesh") + " --scale 4 --polycube-out " +
-                             q(f.dir / "hexpc.mesh") + " --json");
+  const Cli r = run_polycube("hexmesh " + f.args + " -o " + q(f.dir / "hex.mesh") +
+                             " --scale 4 --polycube-out " + q(f.dir / "hexpc.mesh") + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["hexes"], 192);
@@ -67,13 +67,17 @@ TEST(HexmeshCli, TextSummaryAndTargetCount) {
   const core::MeshData hex = io::read_mesh(f.dir / "hex.vtk");
   EXPECT_NEAR(static_cast<double>(hex.hexes.size()), 3000.0, 750.0);
   // --scale and --hexes exclude each other: usage error
-  EXPECT_EQ(run_polycube("hexmesh " + f.args + " -o " + q(f.dir / "x.mesh") + " --scale 2 --hexes 10").exit_code, 1);
+  EXPECT_EQ(
+      run_polycube("hexmesh " + f.args + " -o " + q(f.dir / "x.mesh") + " --scale 2 --hexes 10")
+          .exit_code,
+      1);
   fs::remove_all(f.dir);
 }
 
 TEST(QuadmeshCli, WritesClosedQuadSurface) {
   const Files f = write_map("quadmesh", l_shape(2).map);
-  const Cli r = run_polycube("quadmesh " + f.args + " -o " + q(f.dir / "quad.obj") + " --scale 3 --json");
+  const Cli r =
+      run_polycube("quadmesh " + f.args + " -o " + q(f.dir / "quad.obj") + " --scale 3 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const core::MeshData d = io::read_mesh(f.dir / "quad.obj");
   EXPECT_EQ(d.quads.size(), static_cast<std::size_t>(kLArea * 9));
@@ -86,15 +90,17 @@ TEST(QuadmeshCli, WritesClosedQuadSurface) {
 
 TEST(HexmeshCli, NaiveSnappingDefectsAreRefused) {
   // [0,2]x[0,1]x[0,1] with a 0.3 high step on its left half: at scale 1, z = 1 and z = 1.3 merge
-  const GridMap g = make_grid_map(uniform(0, 2, 4), uniform(0, 1, 2), {0, 0.5, 1, 1.3},
-                                  [](const Vec3& c) { return c.z() < 1 || c.x() < 1; }, [](const Vec3& p) { return p; });
+  const GridMap g = make_grid_map(
+      uniform(0, 2, 4), uniform(0, 1, 2), {0, 0.5, 1, 1.3},
+      [](const Vec3& c) { return c.z() < 1 || c.x() < 1; }, [](const Vec3& p) { return p; });
   const Files f = write_map("hexmesh_snap", g.map);
   const Cli r = run_polycube("hexmesh " + f.args + " -o " + q(f.dir / "hex.mesh") + " --scale 1");
   EXPECT_EQ(r.exit_code, 3) << r.err;
   EXPECT_NE(r.err.find("corners merged: corners"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--allow-defects"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(f.dir / "hex.mesh"));
-  const Cli a = run_polycube("hexmesh " + f.args + " -o " + q(f.dir / "hex.mesh") + " --scale 1 --allow-defects --json");
+  const Cli a = run_polycube("hexmesh " + f.args + " -o " + q(f.dir / "hex.mesh") +
+                             " --scale 1 --allow-defects --json");
   EXPECT_EQ(a.exit_code, 0) << a.err;
   EXPECT_TRUE(fs::exists(f.dir / "hex.mesh"));
   const auto j = nlohmann::json::parse(a.out);
@@ -102,22 +108,28 @@ TEST(HexmeshCli, NaiveSnappingDefectsAreRefused) {
   for (const auto& d : j["snapping"]["defects"]) merged = merged || d["kind"] == "corners merged";
   EXPECT_TRUE(merged);
   // at scale 10 the same map grids cleanly
-  EXPECT_EQ(run_polycube("hexmesh " + f.args + " -o " + q(f.dir / "hex10.mesh") + " --scale 10").exit_code, 0);
+  EXPECT_EQ(run_polycube("hexmesh " + f.args + " -o " + q(f.dir / "hex10.mesh") + " --scale 10")
+                .exit_code,
+            0);
   fs::remove_all(f.dir);
 }
 
 TEST(HexmeshCli, Deterministic) {
-  const GridMap g = l_shape(2, [](const Vec3& p) { return Vec3(p.x() + 0.2 * std::sin(p.z() * 3), p.y(), p.z()); });
+  const GridMap g = l_shape(
+      2, [](const Vec3& p) { return Vec3(p.x() + 0.2 * std::sin(p.z() * 3), p.y(), p.z()); });
   const Files f = write_map("hexmesh_det", g.map);
   for (const char* name : {"a.mesh", "b.mesh"})
-    ASSERT_EQ(run_polycube("hexmesh " + f.args + " -o " + q(f.dir / name) + " --scale 3.3").exit_code, 0);
+    ASSERT_EQ(
+        run_polycube("hexmesh " + f.args + " -o " + q(f.dir / name) + " --scale 3.3").exit_code, 0);
   EXPECT_EQ(read_file(f.dir / "a.mesh"), read_file(f.dir / "b.mesh"));
   fs::remove_all(f.dir);
 }
 
 TEST(HexmeshCli, QualityReadsTheMeshBack) {
   const Files f = write_map("hexmesh_quality", l_shape(2).map);
-  ASSERT_EQ(run_polycube("hexmesh " + f.args + " -o " + q(f.dir / "hex.mesh") + " --scale 2").exit_code, 0);
+  ASSERT_EQ(
+      run_polycube("hexmesh " + f.args + " -o " + q(f.dir / "hex.mesh") + " --scale 2").exit_code,
+      0);
   const Cli r = run_polycube("quality " + q(f.dir / "hex.mesh") + " --json");
   if (r.exit_code == 1) GTEST_SKIP() << "no `polycube quality` subcommand";
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -134,7 +146,9 @@ TEST(HexmeshCli, Vtk9ReadsTheVtkFiles) {
   if (std::system("/usr/bin/python3 -c 'import vtkmodules.vtkIOLegacy' >/dev/null 2>&1") != 0)
     GTEST_SKIP() << "python3-vtk9 not installed";
   const Files f = write_map("hexmesh_vtk", l_shape(2).map);
-  ASSERT_EQ(run_polycube("hexmesh " + f.args + " -o " + q(f.dir / "hex.vtk") + " --scale 2").exit_code, 0);
+  ASSERT_EQ(
+      run_polycube("hexmesh " + f.args + " -o " + q(f.dir / "hex.vtk") + " --scale 2").exit_code,
+      0);
   ASSERT_EQ(run_polycube("structure " + f.args + " -o " + q(f.dir / "s.vtk")).exit_code, 0);
   const fs::path script = f.dir / "check.py";
   {
@@ -147,15 +161,17 @@ TEST(HexmeshCli, Vtk9ReadsTheVtkFiles) {
           "    if r.GetErrorCode() != 0: sys.exit(2)\n"
           "    return r.GetOutput()\n"
           "g = read(sys.argv[1])\n"
-          "q = vtkMeshQuality(); q.SetInputData(g); q.SetHexQualityMeasureToScaledJacobian(); q.Update()\n"
+          "q = vtkMeshQuality(); q.SetInputData(g); q.SetHexQualityMeasureToScaledJacobian(); "
+          "q.Update()\n"
           "a = q.GetOutput().GetCellData().GetArray('Quality')\n"
           "lo = min(a.GetValue(i) for i in range(a.GetNumberOfTuples()))\n"
           "s = read(sys.argv[2])\n"
-          "print(g.GetNumberOfCells(), lo, s.GetNumberOfCells(), s.GetCellData().GetNumberOfArrays())\n";
+          "print(g.GetNumberOfCells(), lo, s.GetNumberOfCells(), "
+          "s.GetCellData().GetNumberOfArrays())\n";
   }
   const std::string out_file = (f.dir / "vtk_out.txt").string();
-  ASSERT_EQ(std::system(("/usr/bin/python3 " + q(script) + " " + q(f.dir / "hex.vtk") + " " + q(f.dir / "s.vtk") +
-                         " > " + q(out_file) + " 2>&1")
+  ASSERT_EQ(std::system(("/usr/bin/python3 " + q(script) + " " + q(f.dir / "hex.vtk") + " " +
+                         q(f.dir / "s.vtk") + " > " + q(out_file) + " 2>&1")
                             .c_str()),
             0)
       << read_file(out_file);

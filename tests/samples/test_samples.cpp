@@ -46,9 +46,9 @@ double sd_minus(double a, double b) { return std::max(a, -b); }
 //! What each sample is meant to be, written independently of the generator.
 struct Expected {
   std::function<double(const Vec3&)> sdf;
-  double volume;       //!< mm^3 of the ideal (circular) CSG shape
+  double volume;  //!< mm^3 of the ideal (circular) CSG shape
   Vec3 bbox_min, bbox_max;
-  double min_radius;   //!< smallest radius of a circular feature (bounds the chord error)
+  double min_radius;  //!< smallest radius of a circular feature (bounds the chord error)
   //! Largest gap between a polygonal cylinder and its circle: r (1 - cos(pi / n)) over the
   //! shape's cylinders of radius r with n segments (64 for radii >= 15 mm, 48 below).
   double max_sagitta;
@@ -62,15 +62,23 @@ Expected expected(const std::string& name) {
     return {[](const Vec3& p) {
               return sd_union(sd_box(p, {0, 0, 0}, {100, 60, 40}), sd_zcyl(p, 50, 30, 20, 30, 80));
             },
-            100.0 * 60 * 40 + kPi * 20 * 20 * 40, {0, 0, 0}, {100, 60, 80}, 20, sagitta(20)};
+            100.0 * 60 * 40 + kPi * 20 * 20 * 40,
+            {0, 0, 0},
+            {100, 60, 80},
+            20,
+            sagitta(20)};
   if (name == "l-bracket")
     // V = (80*15 + 15*45)*40 - pi*8^2*15
     return {[](const Vec3& p) {
-              const double l = sd_union(sd_box(p, {0, 0, 0}, {80, 40, 15}),
-                                        sd_box(p, {0, 0, 0}, {15, 40, 60}));
+              const double l =
+                  sd_union(sd_box(p, {0, 0, 0}, {80, 40, 15}), sd_box(p, {0, 0, 0}, {15, 40, 60}));
               return sd_minus(l, sd_zcyl(p, 50, 20, 8, -2, 17));
             },
-            (80.0 * 15 + 15.0 * 45) * 40 - kPi * 64 * 15, {0, 0, 0}, {80, 40, 60}, 8, sagitta(8)};
+            (80.0 * 15 + 15.0 * 45) * 40 - kPi * 64 * 15,
+            {0, 0, 0},
+            {80, 40, 60},
+            8,
+            sagitta(8)};
   if (name == "flange")
     // V = pi*50^2*12 + pi*22^2*28 - 2*pi*6^2*12
     return {[](const Vec3& p) {
@@ -78,13 +86,20 @@ Expected expected(const std::string& name) {
               d = sd_minus(d, sd_zcyl(p, -36, 0, 6, -2, 14));
               return sd_minus(d, sd_zcyl(p, 36, 0, 6, -2, 14));
             },
-            kPi * (2500.0 * 12 + 484.0 * 28 - 2 * 36.0 * 12), {-50, -50, 0}, {50, 50, 40}, 6,
+            kPi * (2500.0 * 12 + 484.0 * 28 - 2 * 36.0 * 12),
+            {-50, -50, 0},
+            {50, 50, 40},
+            6,
             sagitta(50)};
   // ring: V = pi*(40^2 - 28^2)*20
   return {[](const Vec3& p) {
             return sd_minus(sd_zcyl(p, 0, 0, 40, 0, 20), sd_zcyl(p, 0, 0, 28, -2, 22));
           },
-          kPi * (1600.0 - 784.0) * 20, {-40, -40, 0}, {40, 40, 20}, 28, sagitta(40)};
+          kPi * (1600.0 - 784.0) * 20,
+          {-40, -40, 0},
+          {40, 40, 20},
+          28,
+          sagitta(40)};
 }
 
 // --- helpers -----------------------------------------------------------------------------------

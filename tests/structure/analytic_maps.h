@@ -37,16 +37,17 @@ inline std::vector<double> merged(std::vector<double> a, const std::vector<doubl
 }
 
 struct GridMap {
-  std::array<std::vector<double>, 3> g;          // grid coordinates per axis
-  std::function<bool(const Vec3&)> inside;       // is a cell (given its centre) in the polycube
-  std::function<Vec3(const Vec3&)> deform;       // model position of a polycube point
+  std::array<std::vector<double>, 3> g;     // grid coordinates per axis
+  std::function<bool(const Vec3&)> inside;  // is a cell (given its centre) in the polycube
+  std::function<Vec3(const Vec3&)> deform;  // model position of a polycube point
   core::PolycubeMap map;
 
   [[nodiscard]] bool cell_inside(int i, int j, int k) const {
     if (i < 0 || j < 0 || k < 0 || i + 1 >= static_cast<int>(g[0].size()) ||
         j + 1 >= static_cast<int>(g[1].size()) || k + 1 >= static_cast<int>(g[2].size()))
       return false;
-    const Vec3 c(0.5 * (g[0][i] + g[0][i + 1]), 0.5 * (g[1][j] + g[1][j + 1]), 0.5 * (g[2][k] + g[2][k + 1]));
+    const Vec3 c(0.5 * (g[0][i] + g[0][i + 1]), 0.5 * (g[1][j] + g[1][j + 1]),
+                 0.5 * (g[2][k] + g[2][k + 1]));
     return inside(c);
   }
 
@@ -93,7 +94,8 @@ struct GridMap {
 //! Build the map: vertices of inside cells (numbered in x-fastest order), 6 Kuhn tets per cell
 //! (positively oriented), model = deform(polycube).
 inline GridMap make_grid_map(std::vector<double> gx, std::vector<double> gy, std::vector<double> gz,
-                             std::function<bool(const Vec3&)> inside, std::function<Vec3(const Vec3&)> deform) {
+                             std::function<bool(const Vec3&)> inside,
+                             std::function<Vec3(const Vec3&)> deform) {
   GridMap m;
   m.g = {std::move(gx), std::move(gy), std::move(gz)};
   m.inside = std::move(inside);
@@ -107,7 +109,8 @@ inline GridMap make_grid_map(std::vector<double> gx, std::vector<double> gy, std
     for (int j = 0; j + 1 < ny; ++j)
       for (int i = 0; i + 1 < nx; ++i)
         if (m.cell_inside(i, j, k))
-          for (int c = 0; c < 8; ++c) id[gid(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1))] = 0;
+          for (int c = 0; c < 8; ++c)
+            id[gid(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1))] = 0;
   int nv = 0;
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
@@ -143,7 +146,8 @@ inline GridMap make_grid_map(std::vector<double> gx, std::vector<double> gy, std
 // --- the polycubes of the tests ---------------------------------------------------------------
 
 //! L-shaped polycube of 3 unit cubes: ([0,2]x[0,1] u [0,1]x[1,2]) x [0,1], r grid steps per unit.
-inline GridMap l_shape(int r, std::function<Vec3(const Vec3&)> deform = [](const Vec3& p) { return p; }) {
+inline GridMap l_shape(
+    int r, std::function<Vec3(const Vec3&)> deform = [](const Vec3& p) { return p; }) {
   return make_grid_map(
       uniform(0, 2, 2 * r), uniform(0, 2, 2 * r), uniform(0, 1, r),
       [](const Vec3& c) { return c.x() < 1 || c.y() < 1; }, std::move(deform));

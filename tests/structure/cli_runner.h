@@ -48,7 +48,8 @@ inline std::string quoted(const std::filesystem::path& p) {
 //! Run `polycube <args>` (quote paths yourself).
 inline Cli run_polycube(const std::string& args) {
   static int counter = 0;
-  const std::string err_file = ::testing::TempDir() + "pc_err_" + std::to_string(static_cast<long>(getpid())) + "_" +
+  const std::string err_file = ::testing::TempDir() + "pc_err_" +
+                               std::to_string(static_cast<long>(getpid())) + "_" +
                                std::to_string(counter++) + ".txt";
   const std::string cmd = std::string(POLYCUBE_CLI) + " " + args + " 2>" + err_file;
   Cli r;

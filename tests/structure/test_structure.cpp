@@ -42,7 +42,8 @@ void expect_consistent(const PolycubeStructure& s, const core::PolycubeMap& m) {
     EXPECT_NEAR(std::abs(d[e.axis]), e.length, tol);
     // every vertex of the chain lies on both charts' planes
     for (int v : e.vertices)
-      for (int c : e.charts) EXPECT_NEAR(m.polycube[v][s.charts[c].axis], s.charts[c].coordinate, tol);
+      for (int c : e.charts)
+        EXPECT_NEAR(m.polycube[v][s.charts[c].axis], s.charts[c].coordinate, tol);
   }
   for (const Chart& c : s.charts) EXPECT_LE(c.deviation, tol);
   // the outer loop of each face is positive and the loops' areas add up to the chart area
@@ -137,7 +138,8 @@ TEST(Structure, FaceWithHole) {
 
 TEST(Structure, DeformedModelDoesNotChangeTheStructure) {
   // the structure is a polycube-space notion: a sheared model gives the same counts
-  const GridMap g = test::l_shape(2, [](const Vec3& p) { return Vec3(p.x() + 0.3 * p.z(), p.y(), p.z()); });
+  const GridMap g =
+      test::l_shape(2, [](const Vec3& p) { return Vec3(p.x() + 0.3 * p.z(), p.y(), p.z()); });
   const PolycubeStructure s = extract_structure(g.map);
   EXPECT_EQ(s.charts.size(), 8u);
   EXPECT_EQ(s.corners.size(), 12u);

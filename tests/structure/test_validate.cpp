@@ -75,7 +75,7 @@ TEST(Validate, MirroredMeshIsNamedAsSuch) {
 TEST(Validate, NonAxisAlignedBoundaryTriangle) {
   auto m = test::l_shape(2).map;
   const int v = vertex_at(m, Vec3(0.5, 0.5, 1.0));  // inside the top chart
-  m.polycube[v].z() += 0.01;                         // lifted: its triangles tilt
+  m.polycube[v].z() += 0.01;                        // lifted: its triangles tilt
   const MapDiagnosis d = diagnose_map(m);
   EXPECT_GT(d.non_axis_aligned, 0);
   EXPECT_EQ(d.inverted_polycube + d.flat_polycube, 0);
@@ -129,7 +129,8 @@ TEST(Validate, BadIndicesAreInputErrors) {
 }
 
 TEST(PolycubeMapIo, RoundTripAndConnectivityCheck) {
-  const auto m = test::l_shape(2, [](const Vec3& p) { return Vec3(p.x() + 0.3 * p.z(), p.y(), p.z()); }).map;
+  const auto m =
+      test::l_shape(2, [](const Vec3& p) { return Vec3(p.x() + 0.3 * p.z(), p.y(), p.z()); }).map;
   const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "pc_map_io";
   std::filesystem::create_directories(dir);
   io::write_polycube_map(dir / "model.mesh", dir / "polycube.mesh", m);
@@ -148,7 +149,8 @@ TEST(PolycubeMapIo, RoundTripAndConnectivityCheck) {
     io::read_polycube_map(dir / "model.mesh", dir / "polycube2.mesh");
     FAIL() << "connectivity difference not detected";
   } catch (const core::InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("connectivity differs: tet 17"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("connectivity differs: tet 17"), std::string::npos)
+        << e.what();
   }
   std::filesystem::remove_all(dir);
 }
