@@ -30,8 +30,11 @@ test: build
 bench: build
 	@bench/run.sh $(BUILD)
 
-fuzz: deps
-	@scripts/fuzz.sh
+# make fuzz [FUZZ_SECONDS=60]: every reader's libFuzzer target for that long (build-fuzz/).
+FUZZ_SECONDS ?= 60
+fuzz:
+	@scripts/install-deps.sh scripts/packages-fuzz.txt
+	@scripts/fuzz.sh $(FUZZ_SECONDS)
 
 clean:
 	@rm -rf $(BUILD) out

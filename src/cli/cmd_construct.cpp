@@ -20,6 +20,7 @@ namespace {
 struct ConstructCliOptions {
   std::string input;
   std::string output_dir;
+  std::string keep_failed;  // folder for the best uncertified attempt, for diagnosis
   construct::ConstructOptions construct;
 };
 
@@ -55,9 +56,32 @@ construct::ConstructResult run_from_file(const ConstructCliOptions& o) {
   }
 }
 
+//! The best uncertified attempt, written for diagnosis under names that say so.
+void write_failed_attempt(const std::filesystem::path& dir, const construct::NotCertified& e) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw core::InputError(fmt::format("cannot create the folder {}: {}", dir.string(), ec.message()));
+  core::MeshData model, cube;
+  model.points = e.map().model;
+  cube.points = e.map().polycube;
+  model.tets = cube.tets = e.map().tets;
+  model.triangles = cube.triangles = e.boundary();
+  model.triangle_labels = cube.triangle_labels = e.labels();
+  io::write_mesh(dir / "uncertified_model.mesh", model);
+  io::write_mesh(dir / "uncertified_polycube.mesh", cube);
+  core::logger().warn("construct: wrote the best uncertified attempt to {} (uncertified_*.mesh, for diagnosis only)",
+                      dir.string());
+}
+
 void run_construct(const ConstructCliOptions& o) {
   namespace fs = std::filesystem;
-  const construct::ConstructResult r = run_from_file(o);  // throws unless certified
+  construct::ConstructResult r;
+  try {
+    r = run_from_file(o);  // throws unless certified
+  } catch (const construct::NotCertified& e) {
+    if (!o.keep_failed.empty()) write_failed_attempt(o.keep_failed, e);
+    throw;
+  }
 
   const fs::path dir(o.output_dir);
   std::error_code ec;
@@ -159,6 +183,18 @@ void register_construct(CLI::App& app) {
   sub->add_option("--volume-weight", c.deform.volume_weight, "Weight of the volume term of the elliptic energy")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  sub->add_option("--refine-rounds", c.deform.refine_rounds,
+                  "When tets stay inverted, split their edges and untangle again, at most this many times")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--keep-failed", opts->keep_failed,
+                  "When certification fails, write the best attempt to this folder as uncertified_model.mesh and "
+                  "uncertified_polycube.mesh (boundary labels as triangle references), for diagnosis");
+  sub->add_option("--relabel-rounds", c.relabel_rounds,
+                  "When tets stay inverted, penalize the labels around them and label again, at most this many "
+                  "times per compactness")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   sub->callback([opts] { run_construct(*opts); });
 }
 

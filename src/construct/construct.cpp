@@ -7,6 +7,7 @@
 #include "core/topology.h"
 #include "quality/distortion.h"
 
+#include <Eigen/Geometry>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -42,43 +43,114 @@ ConstructResult construct_from_prepared(const core::TetMesh& mesh, const Constru
     const auto& s = bnd.surface.cells[f];
     tris[f] = {bnd.vertex_map[s[0]], bnd.vertex_map[s[1]], bnd.vertex_map[s[2]]};
   }
+  // Attempts: the compactness schedule (1, then the retry factors); within each, relabelling
+  // rounds that penalize the labels of the triangles around what could not be untangled.
   std::vector<double> factors{1.0};
   for (double f : o.retry_compactness_factors) factors.push_back(f);
+  const int nv0 = mesh.num_points();
+  std::vector<int> surface_of(static_cast<std::size_t>(nv0), -1);  // volume vertex -> surface vertex
+  for (std::size_t i = 0; i < bnd.vertex_map.size(); ++i) surface_of[bnd.vertex_map[i]] = static_cast<int>(i);
+  std::vector<std::vector<int>> vertex_tris(bnd.surface.points.size());
+  for (std::size_t f = 0; f < bnd.surface.cells.size(); ++f)
+    for (int v : bnd.surface.cells[f]) vertex_tris[v].push_back(static_cast<int>(f));
   DeformResult def;
+  bool have_def = false;
   std::string failures;
   bool done = false;
-  for (std::size_t attempt = 0; attempt < factors.size() && !done; ++attempt) {
+  int attempts = 0;
+  for (std::size_t fi = 0; fi < factors.size() && !done && attempts < o.max_attempts; ++fi) {
     LabelingOptions lopt = o.labeling;
-    lopt.compactness *= factors[attempt];
-    auto t = Clock::now();
-    const LabelingResult lab = graph_cut_labeling(bnd.surface, lopt);
-    res.seconds.label += since(t);
-    t = Clock::now();
-    RepairOptions ropt = o.repair;
-    ropt.energy = lopt;
-    const RepairResult rep = repair_labeling(bnd.surface, lab.labels, ropt);
-    res.seconds.repair += since(t);
-    res.repair_moves = rep.moves;
-    if (!rep.valid()) {
-      failures += fmt::format("{}compactness {:.3g}: no valid labeling ({} defect(s): {})", failures.empty() ? "" : "; ",
-                              lopt.compactness, rep.check.defects.size(), defects_text(rep.check, 2));
-      continue;
+    lopt.compactness *= factors[fi];
+    lopt.penalty.clear();
+    for (int round = 0; round <= o.relabel_rounds && !done && attempts < o.max_attempts; ++round) {
+      ++attempts;
+      auto t = Clock::now();
+      const LabelingResult lab = graph_cut_labeling(bnd.surface, lopt);
+      res.seconds.label += since(t);
+      t = Clock::now();
+      RepairOptions ropt = o.repair;
+      ropt.energy = lopt;
+      const RepairResult rep = repair_labeling(bnd.surface, lab.labels, ropt);
+      res.seconds.repair += since(t);
+      res.repair_moves = rep.moves;
+      const std::string what = fmt::format("compactness {:.3g}{}", lopt.compactness,
+                                           round > 0 ? fmt::format(" relabel {}", round) : std::string());
+      if (!rep.valid()) {
+        failures += fmt::format("{}{}: no valid labeling ({} defect(s): {})", failures.empty() ? "" : "; ", what,
+                                rep.check.defects.size(), defects_text(rep.check, 2));
+        break;  // penalties only make it harder: go to the next compactness
+      }
+      log.info("construct: attempt {} ({}): labeling valid ({} charts)", attempts, what, rep.check.layout.num_charts());
+      // Where the attempt failed (volume vertices of the original mesh); empty on success.
+      std::vector<char> bad(bnd.surface.points.size(), 0);
+      auto mark = [&](int v) {
+        if (v >= 0 && v < nv0 && surface_of[v] >= 0) bad[surface_of[v]] = 1;
+      };
+      DeformResult cur;
+      try {
+        cur = deform_to_polycube(mesh, tris, rep.labels, o.deform);
+      } catch (const UnrealizableLabeling& e) {
+        failures += fmt::format("{}{}: {}", failures.empty() ? "" : "; ", what, e.what());
+        log.info("construct: attempt {}: {}", attempts, e.what());
+        for (int v : e.vertices()) mark(v);
+      }
+      const bool deformed = !cur.polycube.empty();
+      if (deformed) {
+        res.seconds.deform += cur.seconds_linear;
+        res.seconds.untangle += cur.seconds_untangle;
+        log.info("construct: deformation {:.2f} s ({} inverted after the linear step), untangling {:.2f} s "
+                 "({} iterations, {} Newton steps, min det {:.3g}, {} inverted)",
+                 cur.seconds_linear, cur.inverted_after_linear, cur.seconds_untangle, cur.untangle.iterations,
+                 cur.untangle.newton_steps, cur.untangle.min_det, cur.untangle.inverted_after);
+        done = cur.untangle.untangled;
+        if (!done) {
+          failures += fmt::format("{}{}: {} tets stay inverted", failures.empty() ? "" : "; ", what,
+                                  cur.untangle.inverted_after);
+          // The tets that stay inverted and the boundary triangles that face away from their
+          // label in polycube space.
+          const auto& P = cur.polycube;
+          for (const auto& c : cur.mesh.cells) {
+            const double det = (P[c[1]] - P[c[0]]).dot((P[c[2]] - P[c[0]]).cross(P[c[3]] - P[c[0]]));
+            if (det > 0) continue;
+            for (int v : c) mark(v);
+          }
+          for (std::size_t f = 0; f < cur.boundary.size(); ++f) {
+            const auto& b = cur.boundary[f];
+            const core::Vec3 n = (P[b[1]] - P[b[0]]).cross(P[b[2]] - P[b[0]]);
+            if (n.dot(label_direction(cur.labels[f])) > 0) continue;
+            for (int v : b) mark(v);
+          }
+        }
+      }
+      if (!done) {
+        // Penalize the current labels within relabel_ring vertex rings of the failure.
+        for (int ring = 0; ring < o.relabel_ring; ++ring) {
+          std::vector<char> next = bad;
+          for (std::size_t v = 0; v < bad.size(); ++v)
+            if (bad[v])
+              for (int f : vertex_tris[v])
+                for (int w : bnd.surface.cells[f]) next[w] = 1;
+          bad.swap(next);
+        }
+        if (lopt.penalty.empty()) lopt.penalty.assign(tris.size(), {0, 0, 0, 0, 0, 0});
+        int penalized = 0;
+        for (std::size_t f = 0; f < tris.size(); ++f) {
+          const auto& c = bnd.surface.cells[f];
+          if (!bad[c[0]] && !bad[c[1]] && !bad[c[2]]) continue;
+          lopt.penalty[f][rep.labels[f]] += o.relabel_penalty;
+          ++penalized;
+        }
+        log.info("construct: relabelling: penalized the labels of {} triangles", penalized);
+      }
+      if (!deformed) continue;
+      // Keep the attempt with the fewest inverted tets.
+      if (!have_def || done || cur.untangle.inverted_after < def.untangle.inverted_after) {
+        def = std::move(cur);
+        have_def = true;
+      }
     }
-    log.info("construct: labeling valid ({} charts, compactness {:.3g}) in {:.2f} s + repair {:.2f} s",
-             rep.check.layout.num_charts(), lopt.compactness, res.seconds.label, res.seconds.repair);
-    def = deform_to_polycube(mesh, tris, rep.labels, o.deform);
-    res.seconds.deform += def.seconds_linear;
-    res.seconds.untangle += def.seconds_untangle;
-    log.info("construct: deformation {:.2f} s ({} inverted after the linear step), untangling {:.2f} s "
-             "({} iterations, {} Newton steps, min det {:.3g}, {} inverted)",
-             def.seconds_linear, def.inverted_after_linear, def.seconds_untangle, def.untangle.iterations,
-             def.untangle.newton_steps, def.untangle.min_det, def.untangle.inverted_after);
-    done = def.untangle.untangled;
-    if (!done)
-      failures += fmt::format("{}compactness {:.3g}: {} tets stay inverted", failures.empty() ? "" : "; ",
-                              lopt.compactness, def.untangle.inverted_after);
   }
-  if (def.polycube.empty())
+  if (!have_def)
     throw core::SolverError("no valid polycube labeling reached: " + failures);
   if (!done) log.warn("construct: every attempt left inverted tets ({})", failures);
   res.split_triangles = def.split_triangles;
@@ -94,8 +166,9 @@ ConstructResult construct_from_prepared(const core::TetMesh& mesh, const Constru
   res.map.polycube = def.polycube;
   res.certificate = certify_polycube_map(res.map, def.boundary, def.labels, o.certify);
   if (!res.certificate.certified())
-    throw core::GeometryError("polycube map not certified: " + res.certificate.reason() +
-                              (failures.empty() ? std::string() : " (attempts: " + failures + ")"));
+    throw NotCertified("polycube map not certified: " + res.certificate.reason() +
+                           (failures.empty() ? std::string() : " (attempts: " + failures + ")"),
+                       res.map, def.boundary, def.labels);
 
   // Boundary in core::boundary() order (the order of the written Triangles blocks).
   const core::TetBoundary fb = core::boundary(def.mesh);

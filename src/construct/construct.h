@@ -13,6 +13,8 @@
 #include "core/types.h"
 #include "solve/untangle.h"
 
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace polycube::construct {
@@ -27,6 +29,14 @@ struct ConstructOptions {
   //! When the deformation leaves inverted tets, the labeling is computed again with the
   //! compactness multiplied by each of these factors in turn (empty: no retry).
   std::vector<double> retry_compactness_factors{2.0, 0.5};
+  //! Relabelling rounds per compactness: when tets stay inverted, the labels of the boundary
+  //! triangles within `relabel_ring` vertex rings of them (and of the boundary triangles that
+  //! face away from their label) get `relabel_penalty` more data cost, and the labeling,
+  //! repair and deformation run again.
+  int relabel_rounds = 3;
+  int relabel_ring = 2;             //!< vertex rings around the failures that are penalized
+  double relabel_penalty = 1.0;     //!< added per round, in units of a 90° misfit
+  int max_attempts = 8;             //!< labeling + deformation runs in all, at most
 };
 
 //! Wall time of each stage (seconds).
@@ -65,10 +75,27 @@ struct ConstructResult {
   ConstructTimes seconds;
 };
 
+//! The map could not be certified: carries the best (uncertified) attempt for diagnosis, so a
+//! caller can show where it failed (never to be used as a result).
+class NotCertified : public core::GeometryError {
+ public:
+  NotCertified(const std::string& what, core::PolycubeMap map, std::vector<core::Tri> boundary, std::vector<int> labels)
+      : core::GeometryError(what), map_(std::move(map)), boundary_(std::move(boundary)), labels_(std::move(labels)) {}
+  [[nodiscard]] const core::PolycubeMap& map() const { return map_; }
+  [[nodiscard]] const std::vector<core::Tri>& boundary() const { return boundary_; }  //!< volume indices
+  [[nodiscard]] const std::vector<int>& labels() const { return labels_; }            //!< one per boundary triangle
+
+ private:
+  core::PolycubeMap map_;
+  std::vector<core::Tri> boundary_;
+  std::vector<int> labels_;
+};
+
 //! Construct a certified polycube map of the volume bounded by a closed surface.
 //! \throw core::InputError when the surface is open, non-manifold, self-intersecting, ...
 //! \throw core::SolverError when no valid labeling is reached (names the remaining defects)
-//! \throw core::GeometryError when the map cannot be certified (with the certificate's reason)
+//! \throw NotCertified (a core::GeometryError) when the map cannot be certified (with the
+//!        certificate's reason and the best attempt)
 ConstructResult construct_polycube(const core::TriMesh& surface, const ConstructOptions& options = {});
 
 //! Same from a tet mesh (checked and oriented by prepare_tet_mesh, then refine_boundary).

@@ -6,6 +6,7 @@
 #include "core/topology.h"
 #include "solve/sparse_solver.h"
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <Eigen/SVD>
 #include <Eigen/SparseCore>
@@ -201,12 +202,17 @@ std::vector<std::array<int, 2>> chord_edges(const std::vector<Tri>& tris, const 
 //! Returns the number of edges split.
 int split_edges(core::TetMesh& mesh, LabeledBoundary& lb, const std::vector<std::array<int, 2>>& edges,
                 std::vector<Vec3>* other = nullptr) {
-  const core::Adjacency vc = core::vertex_cells(mesh);
-  std::vector<char> touched(mesh.cells.size(), 0);
-  // boundary triangles by vertex
+  // Vertex -> cells and vertex -> boundary triangles, kept up to date while splitting: an edge
+  // that shares a vertex with an edge split earlier in this call must see the new cells, or it
+  // would be split in some of its tets only (a hanging node, a non-conforming mesh).
+  std::vector<std::vector<int>> vc(static_cast<std::size_t>(mesh.num_points()));
+  for (std::size_t c = 0; c < mesh.cells.size(); ++c)
+    for (int w : mesh.cells[c]) vc[w].push_back(static_cast<int>(c));
   std::vector<std::vector<int>> vt(static_cast<std::size_t>(mesh.num_points()));
   for (std::size_t t = 0; t < lb.tris.size(); ++t)
-    for (int v : lb.tris[t]) vt[v].push_back(static_cast<int>(t));
+    for (int w : lb.tris[t]) vt[w].push_back(static_cast<int>(t));
+  auto drop = [](std::vector<int>& list, int item) { list.erase(std::remove(list.begin(), list.end(), item), list.end()); };
+  std::vector<char> touched(mesh.cells.size(), 0);
   int count = 0;
   for (const auto& e : edges) {
     const int u = e[0], v = e[1];
@@ -219,6 +225,8 @@ int split_edges(core::TetMesh& mesh, LabeledBoundary& lb, const std::vector<std:
     const int m = mesh.num_points();
     mesh.points.push_back(0.5 * (mesh.points[u] + mesh.points[v]));
     if (other) other->push_back(0.5 * ((*other)[u] + (*other)[v]));  // exact where u, v share a coordinate
+    vc.emplace_back();
+    vt.emplace_back();
     for (int c : around) {
       // Replacing an edge end by a point inside the edge keeps the orientation.
       core::Tet second = mesh.cells[c];
@@ -226,12 +234,17 @@ int split_edges(core::TetMesh& mesh, LabeledBoundary& lb, const std::vector<std:
         if (w == v) w = m;
       for (int& w : second)
         if (w == u) w = m;
+      const int c2 = static_cast<int>(mesh.cells.size());
       mesh.cells.push_back(second);
       if (!mesh.labels.empty()) mesh.labels.push_back(mesh.labels[c]);
       touched[c] = 1;
+      drop(vc[v], c);
+      vc[m].push_back(c);
+      for (int w : second) vc[w].push_back(c2);
     }
     touched.resize(mesh.cells.size(), 1);
-    for (int t : vt[u]) {
+    const std::vector<int> tris_u = vt[u];
+    for (int t : tris_u) {
       Tri& tri = lb.tris[t];
       if (std::find(tri.begin(), tri.end(), v) == tri.end()) continue;
       Tri second = tri;
@@ -239,8 +252,12 @@ int split_edges(core::TetMesh& mesh, LabeledBoundary& lb, const std::vector<std:
         if (w == v) w = m;
       for (int& w : second)
         if (w == u) w = m;
+      const int t2 = static_cast<int>(lb.tris.size());
       lb.tris.push_back(second);
       lb.labels.push_back(lb.labels[t]);
+      drop(vt[v], t);
+      vt[m].push_back(t);
+      for (int w : second) vt[w].push_back(t2);
     }
     ++count;
   }
@@ -281,6 +298,67 @@ bool split_boundary_triangle(core::TetMesh& mesh, LabeledBoundary& lb, int f, st
   return true;
 }
 
+//! Local untangling (after the global optimization left a few tets inverted): only the
+//! coordinates within `rings` tet rings of the inverted tets move, chart coordinates stay at
+//! their current value, and ε starts afresh (large ε is safe here, the fixed surroundings keep
+//! the region from shrinking). Returns the number of tets inverted in the whole mesh afterwards.
+int untangle_locally(const core::TetMesh& mesh, const std::vector<int>& vertex_group, std::vector<Vec3>& P,
+                     int rings, const solve::UntangleOptions& base) {
+  const int nv = mesh.num_points();
+  auto det_of = [&](const core::Tet& c) {
+    return (P[c[1]] - P[c[0]]).dot((P[c[2]] - P[c[0]]).cross(P[c[3]] - P[c[0]]));
+  };
+  std::vector<char> in(static_cast<std::size_t>(nv), 0);
+  for (const auto& c : mesh.cells)
+    if (!(det_of(c) > 0))
+      for (int v : c) in[v] = 1;
+  std::vector<std::vector<int>> vc(static_cast<std::size_t>(nv));
+  for (std::size_t c = 0; c < mesh.cells.size(); ++c)
+    for (int v : mesh.cells[c]) vc[v].push_back(static_cast<int>(c));
+  for (int r = 0; r < rings; ++r) {
+    std::vector<char> next = in;
+    for (int v = 0; v < nv; ++v)
+      if (in[v])
+        for (int c : vc[v])
+          for (int w : mesh.cells[c]) next[w] = 1;
+    in.swap(next);
+  }
+  std::vector<int> var(3 * static_cast<std::size_t>(nv), -1);
+  int n = 0;
+  for (int v = 0; v < nv; ++v)
+    if (in[v])
+      for (int d = 0; d < 3; ++d)
+        if (vertex_group[3 * static_cast<std::size_t>(v) + d] < 0) var[3 * static_cast<std::size_t>(v) + d] = n++;
+  std::vector<core::Tet> local;
+  for (const auto& c : mesh.cells)
+    if (in[c[0]] || in[c[1]] || in[c[2]] || in[c[3]]) local.push_back(c);
+  Eigen::VectorXd fixed(3 * static_cast<Eigen::Index>(nv));
+  for (int v = 0; v < nv; ++v) fixed.segment<3>(3 * v) = P[v];
+  const solve::LinearReduction R = solve::index_reduction(var, n, fixed);
+  Eigen::VectorXd y(n);
+  for (std::size_t i = 0; i < var.size(); ++i)
+    if (var[i] >= 0) y[var[i]] = fixed[static_cast<Eigen::Index>(i)];
+  solve::UntangleOptions uo = base;
+  uo.initial_epsilon = 1.0;
+  uo.max_iterations = std::max(base.max_iterations, 200);
+  const solve::UntangleResult ur = solve::untangle(solve::reference_elements(mesh.points, local), R, y, uo);
+  const Eigen::VectorXd x = R.apply(y);
+  std::vector<Vec3> Q = P;
+  for (int v = 0; v < nv; ++v) Q[v] = x.segment<3>(3 * v);
+  int before = 0, after = 0;
+  for (const auto& c : mesh.cells) before += !(det_of(c) > 0);
+  std::swap(P, Q);
+  for (const auto& c : mesh.cells) after += !(det_of(c) > 0);
+  if (after > before) {  // never make it worse
+    std::swap(P, Q);
+    after = before;
+  }
+  core::logger().debug("deform: local untangling ({} rings, {} tets, {} variables): {} -> {} inverted", rings,
+                       local.size(), n, before, after);
+  (void)ur;
+  return after;
+}
+
 //! Rotation closest to J (polar decomposition; det +1).
 Eigen::Matrix3d closest_rotation(const Eigen::Matrix3d& J) {
   Eigen::JacobiSVD<Eigen::Matrix3d> svd(J, Eigen::ComputeFullU | Eigen::ComputeFullV);
@@ -308,11 +386,15 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
     const std::vector<std::array<int, 2>> chords = chord_edges(lb.tris, lb.labels, cv);
     const std::vector<int> flat = chords.empty() ? forced_flat_triangles(lb.tris, lb.labels, cv) : std::vector<int>{};
     if (chords.empty() && flat.empty()) break;
-    if (round >= 12)
-      throw core::GeometryError(fmt::format(
-          "deform: {} boundary edges and {} triangles stay forced onto polycube edges by the labeling after "
-          "splitting",
-          chords.size(), flat.size()));
+    if (round >= 12) {
+      std::vector<int> where;
+      for (const auto& e : chords) where.insert(where.end(), e.begin(), e.end());
+      for (int f : flat) where.insert(where.end(), lb.tris[f].begin(), lb.tris[f].end());
+      throw UnrealizableLabeling(fmt::format("deform: {} boundary edges and {} triangles stay forced onto polycube "
+                                             "edges by the labeling after splitting",
+                                             chords.size(), flat.size()),
+                                 std::move(where));
+    }
     if (!chords.empty()) {
       res.split_edges += split_edges(mesh, lb, chords);
     } else {
@@ -333,10 +415,10 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
         same = g >= 0 && g == cv.vertex_group[3 * static_cast<std::size_t>(e[1]) + a];
       }
       if (same)
-        throw core::GeometryError(fmt::format(
+        throw UnrealizableLabeling(fmt::format(
             "deform: the labeling forces vertices {} and {} (an edge) onto one polycube point: both are corners of the "
             "same three charts",
-            e[0], e[1]));
+            e[0], e[1]), {e[0], e[1]});
     }
   }
   // Reduction: chart coordinates first (one per group), then every free coordinate.
@@ -452,6 +534,28 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
     }
     for (int v = 0; v < n_points; ++v)
       for (int d = 0; d < 3; ++d) P[v][d] = y[var[3 * static_cast<std::size_t>(v) + d]];
+    if (!ur.untangled) {
+      // A few tets left: untangle locally with a fresh ε, in growing regions.
+      for (int rings : {2, 4, 8}) {
+        if (untangle_locally(mesh, cv.vertex_group, P, rings, uo) == 0) {
+          // Back through the global optimizer (from a valid state, it stays valid) to spread
+          // the distortion, then take its verdict.
+          for (int v = 0; v < n_points; ++v)
+            for (int d = 0; d < 3; ++d) y[var[3 * static_cast<std::size_t>(v) + d]] = P[v][d];
+          const solve::UntangleResult again = solve::untangle(el, R, y, uo);
+          for (int v = 0; v < n_points; ++v)
+            for (int d = 0; d < 3; ++d) P[v][d] = y[var[3 * static_cast<std::size_t>(v) + d]];
+          res.untangle.untangled = again.untangled;
+          res.untangle.iterations += again.iterations;
+          res.untangle.newton_steps += again.newton_steps;
+          res.untangle.inverted_after = again.inverted_after;
+          res.untangle.min_det = again.min_det;
+          res.untangle.energy = again.energy;
+          break;
+        }
+      }
+      if (res.untangle.untangled) break;
+    }
     if (ur.untangled || round >= o.refine_rounds) break;
     // Local refinement around the tets that stay inverted.
     std::vector<std::array<int, 2>> edges;

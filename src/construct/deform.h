@@ -22,9 +22,12 @@
 //! The polycube coordinate of a chart vertex along the chart's axis equals the chart's unknown
 //! bit for bit.
 
+#include "core/errors.h"
 #include "core/types.h"
 #include "solve/untangle.h"
 
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace polycube::construct {
@@ -65,13 +68,25 @@ struct DeformResult {
   double seconds_untangle = 0;              //!< time of step 4
 };
 
+//! The labeling cannot be realized by any polycube of this mesh (two vertices forced onto one
+//! point, triangles forced onto a polycube edge): vertices() names the volume vertices where.
+class UnrealizableLabeling : public core::GeometryError {
+ public:
+  UnrealizableLabeling(const std::string& what, std::vector<int> vertices)
+      : core::GeometryError(what), vertices_(std::move(vertices)) {}
+  [[nodiscard]] const std::vector<int>& vertices() const { return vertices_; }
+
+ private:
+  std::vector<int> vertices_;
+};
+
 //! Deform a tet mesh with a labeled boundary into a polycube.
 //! \param mesh      positively oriented tet mesh (#V, #T)
 //! \param boundary  its boundary triangles (#B, volume vertex indices, any order and orientation)
 //! \param labels    #B labels in {0..5} = {+X, −X, +Y, −Y, +Z, −Z}
 //! \throw core::InputError when boundary is not exactly the set of boundary faces of mesh, or a
 //!        label is out of range
-//! \throw core::GeometryError when the labeling forces two distinct vertices onto one point
+//! \throw UnrealizableLabeling when the labeling forces two distinct vertices onto one point
 //!        (names them); an untangling failure is NOT thrown: check result.untangle.untangled
 //!        (and certify the map, certify.h)
 DeformResult deform_to_polycube(const core::TetMesh& mesh, const std::vector<core::Tri>& boundary,

@@ -143,10 +143,14 @@ Energy make_energy(const SurfaceGraph& g, const LabelingOptions& opt) {
   for (double l : g.edge_lengths) mean_len += l;
   mean_len /= std::max<std::size_t>(1, g.edge_lengths.size());
   en.data.resize(static_cast<std::size_t>(g.num_triangles));
+  PC_REQUIRE(opt.penalty.empty() || static_cast<int>(opt.penalty.size()) == g.num_triangles,
+             "labeling: penalty needs one entry per triangle");
   for (int t = 0; t < g.num_triangles; ++t) {
     const double w = mean_area > 0.0 ? g.areas[t] / mean_area : 1.0;
-    for (int l = 0; l < kNumLabels; ++l)
+    for (int l = 0; l < kNumLabels; ++l) {
       en.data[t][l] = w * (1.0 - g.normals[t].dot(label_direction(l)));
+      if (!opt.penalty.empty()) en.data[t][l] += w * opt.penalty[t][l];
+    }
   }
   en.edge_weight.resize(g.edges.size());
   const double s2 = 2.0 * opt.sigma * opt.sigma;

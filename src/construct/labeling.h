@@ -8,6 +8,7 @@
 
 #include "core/types.h"
 
+#include <array>
 #include <vector>
 
 namespace polycube::construct {
@@ -33,6 +34,10 @@ struct LabelingOptions {
   double sigma = 0.25;
   //! At most this many α-expansion cycles (one cycle = one expansion move per label).
   int max_cycles = 8;
+  //! Empty, or #T extra data costs per (triangle, label), in units of the fidelity term of a
+  //! triangle of mean area (so 1 = as bad as a label 90° off the normal). Used to steer the
+  //! labeling away from labels that could not be realized (construct_polycube's relabelling).
+  std::vector<std::array<double, 6>> penalty;
 };
 
 //! Result of graph_cut_labeling().

@@ -7,6 +7,7 @@
 #include "io/parse.h"
 
 #include <Eigen/Geometry>
+#include <fmt/format.h>
 
 #include <cmath>
 #include <cstdint>
@@ -111,7 +112,13 @@ core::MeshData read_ascii(std::string_view data, const std::string& name) {
     for (int c = 0; c < 3; ++c) {
       expect("vertex");
       core::Vec3 p;
-      for (int k = 0; k < 3; ++k) p[k] = s.real("vertex coordinate");
+      for (int k = 0; k < 3; ++k) {
+        p[k] = s.real("vertex coordinate");
+        // STL stores single precision: a value that rounds to an infinite float cannot be a
+        // real STL coordinate (0x1.ffffffp127 = FLT_MAX + half an ulp: the rounding limit).
+        if (std::abs(p[k]) >= 0x1.ffffffp127)
+          s.fail("vertex coordinate " + fmt::format("{:g}", p[k]) + " exceeds the single-precision range of STL");
+      }
       tri[c] = weld.vertex(p);
     }
     expect("endloop");

@@ -131,7 +131,6 @@ TEST(HexmeshCli, QualityReadsTheMeshBack) {
       run_polycube("hexmesh " + f.args + " -o " + q(f.dir / "hex.mesh") + " --scale 2").exit_code,
       0);
   const Cli r = run_polycube("quality " + q(f.dir / "hex.mesh") + " --json");
-  if (r.exit_code == 1) GTEST_SKIP() << "no `polycube quality` subcommand";
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["cells"], 24);

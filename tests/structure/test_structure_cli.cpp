@@ -73,6 +73,17 @@ TEST(StructureCli, InvalidMapsExitWithCode2AndNameTheFailure) {
     cases.push_back({"flat", m, "flat (zero volume) in polycube space"});
   }
   {
+    // The interior vertex pushed through a face of its star: tets invert in polycube space only.
+    auto m = l_shape(2).map;
+    m.polycube[vertex_at(m, Vec3(0.5, 0.5, 0.5))] = Vec3(1.5, 0.5, 0.5);
+    cases.push_back({"inverted_polycube", m, "inverted in polycube space"});
+  }
+  {
+    auto m = l_shape(2).map;
+    m.model[vertex_at(m, Vec3(0.5, 0.5, 0.5))] = m.model[vertex_at(m, Vec3(1.0, 0.5, 0.5))];
+    cases.push_back({"flat_model", m, "flat (zero volume) in model space"});
+  }
+  {
     auto m = l_shape(2).map;
     m.polycube[vertex_at(m, Vec3(0.5, 0.5, 1.0))].z() += 0.01;
     cases.push_back({"tilted", m, "not axis-aligned (tolerance"});
