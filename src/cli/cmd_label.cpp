@@ -5,6 +5,7 @@
 #include "construct/labeling.h"
 #include "construct/labeling_check.h"
 #include "construct/labeling_repair.h"
+#include "construct/polycube_estimate.h"
 #include "construct/tetrahedralize.h"
 #include "core/errors.h"
 #include "core/log.h"
@@ -91,6 +92,7 @@ void run_label(const LabelOptions& o) {
   const construct::RepairResult rep = construct::repair_labeling(bnd.surface, lab.labels, ropt);
   const double t_label = seconds_since(t1);
   const double fidelity = construct::labeling_fidelity(bnd.surface, rep.labels);
+  const construct::PolycubeEstimate est = construct::estimate_polycube(bnd.surface, rep.labels);
   const auto& layout = rep.check.layout;
 
   // 3. Outputs: tets.mesh (Triangles = boundary, refs = labels), labeling.txt, report.json.
@@ -133,6 +135,10 @@ void run_label(const LabelOptions& o) {
                       {"defects_before_repair", rep.initial_defects},
                       {"repair_moves", rep.moves},
                       {"valid", rep.valid()},
+                      {"estimate",
+                       {{"folded_triangles", est.flipped.size()},
+                        {"folded_area_fraction", est.flipped_area},
+                        {"edge_distortion", est.edge_distortion}}},
                       {"defects", defects},
                       {"seconds", {{"tetrahedralize", t_tet}, {"label_and_repair", t_label}}},
                       {"outputs", {{"mesh", (dir / "tets.mesh").string()},
@@ -151,6 +157,8 @@ void run_label(const LabelOptions& o) {
     text += fmt::format("labeling: INVALID, {} defect(s) remain:\n", rep.check.defects.size());
     for (const auto& d : rep.check.defects) text += "  " + d.reason + "\n";
   }
+  text += fmt::format("polycube estimate: {} folded triangles ({:.3g}% of the area), edge distortion {:.3f}\n",
+                      est.flipped.size(), 100.0 * est.flipped_area, est.edge_distortion);
   text += fmt::format("wrote {}", dir.string());
   print_result(j, text);
   log.info("label: tetrahedralize {:.2f} s, label and repair {:.2f} s", t_tet, t_label);

@@ -2,6 +2,7 @@
 #include "construct/construct.h"
 
 #include "construct/labeling_check.h"
+#include "construct/polycube_estimate.h"
 #include "core/errors.h"
 #include "core/log.h"
 #include "core/topology.h"
@@ -26,6 +27,79 @@ std::string defects_text(const LabelingCheck& check, std::size_t max_listed = 5)
     s += (i ? "; " : "") + check.defects[i].reason;
   if (check.defects.size() > max_listed) s += fmt::format("; and {} more", check.defects.size() - max_listed);
   return s;
+}
+
+//! Add `amount` to the data cost of the current label of every triangle within `rings` vertex
+//! rings of the marked surface vertices. Returns the number of triangles penalized.
+int penalize_around(const core::TriMesh& s, const std::vector<std::vector<int>>& vertex_tris,
+                    const std::vector<int>& labels, std::vector<char> marked, int rings, double amount,
+                    std::vector<std::array<double, 6>>& penalty) {
+  for (int ring = 0; ring < rings; ++ring) {
+    std::vector<char> next = marked;
+    for (std::size_t v = 0; v < marked.size(); ++v)
+      if (marked[v])
+        for (int f : vertex_tris[v])
+          for (int w : s.cells[f]) next[w] = 1;
+    marked.swap(next);
+  }
+  if (penalty.empty()) penalty.assign(s.cells.size(), {0, 0, 0, 0, 0, 0});
+  int count = 0;
+  for (std::size_t f = 0; f < s.cells.size(); ++f) {
+    const auto& c = s.cells[f];
+    if (!marked[c[0]] && !marked[c[1]] && !marked[c[2]]) continue;
+    penalty[f][labels[f]] += amount;
+    ++count;
+  }
+  return count;
+}
+
+//! A valid labeling steered by the fast polycube estimate: graph cut + repair, then while the
+//! estimate folds some triangles, penalize their labels and label again (estimate_rounds
+//! times at most). The valid labeling whose estimate folds the least area wins.
+struct SteeredLabeling {
+  RepairResult repair;
+  PolycubeEstimate estimate;
+  bool valid = false;
+  int rounds = 0;
+};
+
+SteeredLabeling steered_labeling(const core::TriMesh& s, const std::vector<std::vector<int>>& vertex_tris,
+                                 LabelingOptions& lopt, const ConstructOptions& o, ConstructTimes& seconds) {
+  auto& log = core::logger();
+  SteeredLabeling best;
+  for (int round = 0; round <= o.estimate_rounds; ++round) {
+    auto t = Clock::now();
+    const LabelingResult lab = graph_cut_labeling(s, lopt);
+    seconds.label += since(t);
+    t = Clock::now();
+    RepairOptions ropt = o.repair;
+    ropt.energy = lopt;
+    RepairResult rep = repair_labeling(s, lab.labels, ropt);
+    if (!rep.valid()) {
+      seconds.repair += since(t);
+      if (!best.valid) best.repair = std::move(rep);
+      break;
+    }
+    PolycubeEstimate est = estimate_polycube(s, rep.labels);
+    seconds.repair += since(t);
+    log.info("construct: labeling round {}: {} charts, the polycube estimate folds {} triangles ({:.3g}% of the area)",
+             round, rep.check.layout.num_charts(), est.flipped.size(), 100.0 * est.flipped_area);
+    const bool fewer = !best.valid || est.flipped_area < best.estimate.flipped_area;
+    const bool done = est.flipped.empty();
+    std::vector<char> marked(s.points.size(), 0);
+    for (int f : est.flipped)
+      for (int v : s.cells[f]) marked[v] = 1;
+    const std::vector<int> labels = rep.labels;
+    if (fewer) {
+      best.repair = std::move(rep);
+      best.estimate = std::move(est);
+      best.valid = true;
+      best.rounds = round;
+    }
+    if (done || round == o.estimate_rounds) break;
+    penalize_around(s, vertex_tris, labels, std::move(marked), o.relabel_ring, o.relabel_penalty, lopt.penalty);
+  }
+  return best;
 }
 
 }  // namespace
@@ -64,23 +138,18 @@ ConstructResult construct_from_prepared(const core::TetMesh& mesh, const Constru
     lopt.penalty.clear();
     for (int round = 0; round <= o.relabel_rounds && !done && attempts < o.max_attempts; ++round) {
       ++attempts;
-      auto t = Clock::now();
-      const LabelingResult lab = graph_cut_labeling(bnd.surface, lopt);
-      res.seconds.label += since(t);
-      t = Clock::now();
-      RepairOptions ropt = o.repair;
-      ropt.energy = lopt;
-      const RepairResult rep = repair_labeling(bnd.surface, lab.labels, ropt);
-      res.seconds.repair += since(t);
+      const SteeredLabeling sl = steered_labeling(bnd.surface, vertex_tris, lopt, o, res.seconds);
+      const RepairResult& rep = sl.repair;
       res.repair_moves = rep.moves;
       const std::string what = fmt::format("compactness {:.3g}{}", lopt.compactness,
                                            round > 0 ? fmt::format(" relabel {}", round) : std::string());
-      if (!rep.valid()) {
+      if (!sl.valid) {
         failures += fmt::format("{}{}: no valid labeling ({} defect(s): {})", failures.empty() ? "" : "; ", what,
                                 rep.check.defects.size(), defects_text(rep.check, 2));
         break;  // penalties only make it harder: go to the next compactness
       }
-      log.info("construct: attempt {} ({}): labeling valid ({} charts)", attempts, what, rep.check.layout.num_charts());
+      log.info("construct: attempt {} ({}): labeling valid ({} charts, estimate folds {} triangles)", attempts, what,
+               rep.check.layout.num_charts(), sl.estimate.flipped.size());
       // Where the attempt failed (volume vertices of the original mesh); empty on success.
       std::vector<char> bad(bnd.surface.points.size(), 0);
       auto mark = [&](int v) {
@@ -123,24 +192,9 @@ ConstructResult construct_from_prepared(const core::TetMesh& mesh, const Constru
         }
       }
       if (!done) {
-        // Penalize the current labels within relabel_ring vertex rings of the failure.
-        for (int ring = 0; ring < o.relabel_ring; ++ring) {
-          std::vector<char> next = bad;
-          for (std::size_t v = 0; v < bad.size(); ++v)
-            if (bad[v])
-              for (int f : vertex_tris[v])
-                for (int w : bnd.surface.cells[f]) next[w] = 1;
-          bad.swap(next);
-        }
-        if (lopt.penalty.empty()) lopt.penalty.assign(tris.size(), {0, 0, 0, 0, 0, 0});
-        int penalized = 0;
-        for (std::size_t f = 0; f < tris.size(); ++f) {
-          const auto& c = bnd.surface.cells[f];
-          if (!bad[c[0]] && !bad[c[1]] && !bad[c[2]]) continue;
-          lopt.penalty[f][rep.labels[f]] += o.relabel_penalty;
-          ++penalized;
-        }
-        log.info("construct: relabelling: penalized the labels of {} triangles", penalized);
+        const int n = penalize_around(bnd.surface, vertex_tris, rep.labels, std::move(bad), o.relabel_ring,
+                                      o.relabel_penalty, lopt.penalty);
+        log.info("construct: relabelling: penalized the labels of {} triangles", n);
       }
       if (!deformed) continue;
       // Keep the attempt with the fewest inverted tets.

@@ -33,7 +33,10 @@ struct ConstructOptions {
   //! triangles within `relabel_ring` vertex rings of them (and of the boundary triangles that
   //! face away from their label) get `relabel_penalty` more data cost, and the labeling,
   //! repair and deformation run again.
-  int relabel_rounds = 3;
+  int relabel_rounds = 0;
+  //! Labeling rounds steered by the fast polycube estimate (polycube_estimate.h) before each
+  //! deformation: while the estimate folds triangles, their labels are penalized the same way.
+  int estimate_rounds = 0;
   int relabel_ring = 2;             //!< vertex rings around the failures that are penalized
   double relabel_penalty = 1.0;     //!< added per round, in units of a 90° misfit
   int max_attempts = 8;             //!< labeling + deformation runs in all, at most

@@ -2,6 +2,7 @@
 
 #include "construct/labeling_check_detail.h"
 #include "construct/labeling_detail.h"
+#include "construct/polycube_estimate.h"
 #include "core/errors.h"
 #include "core/log.h"
 
@@ -41,13 +42,33 @@ class Repairer {
         int best = -1;
         int best_defects = current;
         double best_delta = std::numeric_limits<double>::infinity();
+        std::vector<int> defects(moves.size());
         for (std::size_t i = 0; i < moves.size(); ++i) {
           const double delta = energy_delta(moves[i]);
-          const int k = evaluate(moves[i]);
+          const int k = defects[i] = evaluate(moves[i]);
           if (k < best_defects || (k == best_defects && best >= 0 && delta < best_delta)) {
             best = static_cast<int>(i);
             best_defects = k;
             best_delta = delta;
+          }
+        }
+        // Among the moves that remove the most defects, the one whose fast polycube estimate
+        // folds the least area wins (then the lowest labeling energy).
+        if (best >= 0 && surface_ != nullptr) {
+          std::vector<int> tied;
+          for (std::size_t i = 0; i < moves.size(); ++i)
+            if (defects[i] == best_defects) tied.push_back(static_cast<int>(i));
+          if (tied.size() > 1) {
+            double best_fold = std::numeric_limits<double>::infinity();
+            for (const int i : tied) {
+              const double fold = folded_area(moves[i]);
+              const double delta = energy_delta(moves[i]);
+              if (fold < best_fold || (fold == best_fold && delta < best_delta)) {
+                best = i;
+                best_fold = fold;
+                best_delta = delta;
+              }
+            }
           }
         }
         if (best >= 0) {
@@ -60,8 +81,21 @@ class Repairer {
   }
 
   int max_ring_ = 6;
+  const core::TriMesh* surface_ = nullptr;  //!< set: rank tied moves by the polycube estimate
 
  private:
+  //! Area fraction the fast polycube estimate folds after a move (labels restored afterwards).
+  double folded_area(const Move& m) {
+    saved_.clear();
+    for (const int t : m.triangles) {
+      saved_.push_back(labels_[t]);
+      labels_[t] = m.label;
+    }
+    const double f = estimate_polycube(*surface_, labels_).flipped_area;
+    for (std::size_t i = 0; i < m.triangles.size(); ++i) labels_[m.triangles[i]] = saved_[i];
+    return f;
+  }
+
   //! Defect count after applying a move (labels restored afterwards).
   int evaluate(const Move& m) {
     saved_.clear();
@@ -230,6 +264,7 @@ RepairResult repair_labeling(const core::TriMesh& surface, const std::vector<int
   const Energy en = detail::make_energy(g, options.energy);
   Repairer rep(g, en, labels);
   rep.max_ring_ = std::max(0, options.max_ring);
+  if (options.score_by_estimate) rep.surface_ = &surface;
   LabelingCheck check = first;
   while (!check.valid() && r.moves < options.max_moves) {
     if (!rep.step(check)) break;

@@ -6,8 +6,9 @@
 //! re-labelling a small chart (merging it into a neighbour), re-labelling a strip along a
 //! boundary between opposite charts with a third axis, re-labelling the k-ring of a bad corner
 //! or the sectors of its charts, for growing rings. A move is kept only when it lowers the
-//! number of defects; among those, the one with the lowest labeling energy (fidelity +
-//! compactness, the terms of graph_cut_labeling()) wins. The repair never gives up silently:
+//! number of defects; among those that remove the most, the one whose fast polycube estimate
+//! (polycube_estimate.h) folds the least surface area wins, then the one with the lowest
+//! labeling energy (fidelity + compactness, the terms of graph_cut_labeling()). The repair never gives up silently:
 //! the result lists every remaining defect with its reason.
 
 #include "construct/labeling.h"
@@ -27,6 +28,9 @@ struct RepairOptions {
   int max_ring = 6;
   //! At most this many accepted moves.
   int max_moves = 5000;
+  //! Rank the moves that remove the most defects by the fast polycube estimate
+  //! (polycube_estimate.h: least area folded), then by labeling energy; false: energy only.
+  bool score_by_estimate = true;
 };
 
 //! Result of repair_labeling().

@@ -3,6 +3,7 @@
 #include "construct/labeling.h"
 #include "construct/labeling_check.h"
 #include "construct/labeling_repair.h"
+#include "construct/polycube_estimate.h"
 #include "construct/tetrahedralize.h"
 #include "core/errors.h"
 #include "core/topology.h"
@@ -165,6 +166,55 @@ TEST(Tetrahedralize, RefusesSelfIntersectingSurface) {
 
 TEST(Tetrahedralize, RefusesEmptySurface) {
   EXPECT_THROW(construct::tetrahedralize(core::TriMesh{}), core::InputError);
+}
+
+// --- fast polycube estimate ------------------------------------------------------------------
+
+namespace {
+std::vector<int> normal_labels(const core::TriMesh& m) {
+  std::vector<int> labels;
+  for (const auto& c : m.cells) {
+    const core::Vec3 n = (m.points[c[1]] - m.points[c[0]]).cross(m.points[c[2]] - m.points[c[0]]);
+    int best = 0;
+    for (int l = 1; l < construct::kNumLabels; ++l)
+      if (n.dot(construct::label_direction(l)) > n.dot(construct::label_direction(best))) best = l;
+    labels.push_back(best);
+  }
+  return labels;
+}
+}  // namespace
+
+TEST(PolycubeEstimate, BoxWithItsOwnLabelingIsReproduced) {
+  // A box is already a polycube: the estimate keeps every edge vector, folds nothing.
+  const core::TriMesh box = test::make_box(1.0, 2.0, 3.0, 3);
+  const auto est = construct::estimate_polycube(box, normal_labels(box));
+  EXPECT_TRUE(est.flipped.empty());
+  EXPECT_NEAR(est.flipped_area, 0.0, 0.0);
+  EXPECT_LT(est.edge_distortion, 1e-6);
+  for (int v = 0; v < box.num_points(); ++v) EXPECT_LT((est.points[v] - box.points[v]).norm(), 1e-6);
+}
+
+TEST(PolycubeEstimate, TopLabeledDownwardsFolds) {
+  // The top face labeled -Z stays on top (its plane is kept by the edge vectors) but faces
+  // away from its label: exactly its triangles are folded, a sixth of the area of a cube.
+  const core::TriMesh cube = test::make_box(1.0, 1.0, 1.0, 4);
+  std::vector<int> labels = normal_labels(cube);
+  int top = 0;
+  for (int& l : labels)
+    if (l == 4) {
+      l = 5;
+      ++top;
+    }
+  ASSERT_EQ(top, 2 * 4 * 4);
+  const auto est = construct::estimate_polycube(cube, labels);
+  EXPECT_EQ(static_cast<int>(est.flipped.size()), top);
+  for (int t : est.flipped) EXPECT_EQ(labels[t], 5);
+  EXPECT_NEAR(est.flipped_area, 1.0 / 6.0, 1e-9);
+}
+
+TEST(PolycubeEstimate, WrongLabelCountIsBadInput) {
+  const core::TriMesh cube = test::make_box(1.0, 1.0, 1.0, 1);
+  EXPECT_THROW(construct::estimate_polycube(cube, std::vector<int>(3, 0)), core::InputError);
 }
 
 // --- labeling --------------------------------------------------------------------------------
