@@ -375,6 +375,7 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
   Eigen::VectorXd best_y = y;
   int best_inverted = st.inverted;
   int last_progress = 0;
+  double progress_min_det = st.min_det;
 
   for (int outer = 0; outer < o.max_iterations; ++outer) {
     ++res.iterations;
@@ -475,7 +476,12 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
     const double E = st.energy;
     core::logger().debug("untangle: iteration {} E {:.6g} eps {:.3g} min det {:.3g} inverted {}", outer, E, eps,
                          st.min_det, st.inverted);
-    if (st.inverted < best_inverted) last_progress = outer;
+    // Progress: fewer inverted elements, or a clearly less negative min det (the inverted
+    // count can stay flat for many iterations while the remaining ones unfold).
+    if (st.inverted < best_inverted || (st.inverted > 0 && st.min_det > progress_min_det + 0.02 * std::abs(progress_min_det))) {
+      last_progress = outer;
+      progress_min_det = st.min_det;
+    }
     if (st.inverted <= best_inverted) {
       best_inverted = st.inverted;
       best_y = y;

@@ -105,8 +105,8 @@ struct UntangleOptions {
   //! Elements count as inverted when det J <= this (relative to the reference; > 0 asks for
   //! a margin).
   double min_det_target = 0.0;
-  //! Give up when the number of inverted elements has not decreased for this many outer
-  //! iterations (0 = never).
+  //! Give up when, for this many outer iterations, neither the number of inverted elements
+  //! decreased nor the min det rose by 2% of its magnitude (0 = never).
   int stall_iterations = 20;
   std::vector<Attraction> attractions;  //!< optional extra quadratic terms
 };
