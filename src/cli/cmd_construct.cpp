@@ -187,6 +187,11 @@ void register_construct(CLI::App& app) {
                   "When tets stay inverted, split their edges and untangle again, at most this many times")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  sub->add_option("--estimate-rounds", c.estimate_rounds,
+                  "Before each deformation, while the fast polycube estimate folds triangles, penalize their labels "
+                  "and label again, at most this many times")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   sub->add_option("--keep-failed", opts->keep_failed,
                   "When certification fails, write the best attempt to this folder as uncertified_model.mesh and "
                   "uncertified_polycube.mesh (boundary labels as triangle references), for diagnosis");

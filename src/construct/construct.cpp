@@ -80,6 +80,15 @@ SteeredLabeling steered_labeling(const core::TriMesh& s, const std::vector<std::
       if (!best.valid) best.repair = std::move(rep);
       break;
     }
+    if (o.unfold_moves > 0) {
+      UnfoldResult un = unfold_labeling(s, rep.labels, o.unfold_moves);
+      if (un.moves > 0) {
+        log.info("construct: unfolding the labeling: {} move(s), estimate folds {} -> {} triangles", un.moves,
+                 un.folded_before, un.folded_after);
+        rep.labels = std::move(un.labels);
+        rep.check = check_labeling(s, rep.labels);
+      }
+    }
     PolycubeEstimate est = estimate_polycube(s, rep.labels);
     seconds.repair += since(t);
     log.info("construct: labeling round {}: {} charts, the polycube estimate folds {} triangles ({:.3g}% of the area)",
@@ -129,6 +138,7 @@ ConstructResult construct_from_prepared(const core::TetMesh& mesh, const Constru
     for (int v : bnd.surface.cells[f]) vertex_tris[v].push_back(static_cast<int>(f));
   DeformResult def;
   bool have_def = false;
+  int def_failures = 0;  // inverted tets + wrong-facing triangles of the kept attempt
   std::string failures;
   bool done = false;
   int attempts = 0;
@@ -156,6 +166,7 @@ ConstructResult construct_from_prepared(const core::TetMesh& mesh, const Constru
         if (v >= 0 && v < nv0 && surface_of[v] >= 0) bad[surface_of[v]] = 1;
       };
       DeformResult cur;
+      int cur_failures = 0;
       try {
         cur = deform_to_polycube(mesh, tris, rep.labels, o.deform);
       } catch (const UnrealizableLabeling& e) {
@@ -171,25 +182,28 @@ ConstructResult construct_from_prepared(const core::TetMesh& mesh, const Constru
                  "({} iterations, {} Newton steps, min det {:.3g}, {} inverted)",
                  cur.seconds_linear, cur.inverted_after_linear, cur.seconds_untangle, cur.untangle.iterations,
                  cur.untangle.newton_steps, cur.untangle.min_det, cur.untangle.inverted_after);
-        done = cur.untangle.untangled;
-        if (!done) {
-          failures += fmt::format("{}{}: {} tets stay inverted", failures.empty() ? "" : "; ", what,
-                                  cur.untangle.inverted_after);
-          // The tets that stay inverted and the boundary triangles that face away from their
-          // label in polycube space.
-          const auto& P = cur.polycube;
-          for (const auto& c : cur.mesh.cells) {
-            const double det = (P[c[1]] - P[c[0]]).dot((P[c[2]] - P[c[0]]).cross(P[c[3]] - P[c[0]]));
-            if (det > 0) continue;
-            for (int v : c) mark(v);
-          }
-          for (std::size_t f = 0; f < cur.boundary.size(); ++f) {
-            const auto& b = cur.boundary[f];
-            const core::Vec3 n = (P[b[1]] - P[b[0]]).cross(P[b[2]] - P[b[0]]);
-            if (n.dot(label_direction(cur.labels[f])) > 0) continue;
-            for (int v : b) mark(v);
-          }
+        // The tets and the boundary triangles that face away from their label in polycube
+        // space (with every tet positive, such a triangle means the surface folds over itself).
+        const auto& P = cur.polycube;
+        int inverted = 0, wrong_facing = 0;
+        for (const auto& c : cur.mesh.cells) {
+          const double det = (P[c[1]] - P[c[0]]).dot((P[c[2]] - P[c[0]]).cross(P[c[3]] - P[c[0]]));
+          if (det > 0) continue;
+          ++inverted;
+          for (int v : c) mark(v);
         }
+        for (std::size_t f = 0; f < cur.boundary.size(); ++f) {
+          const auto& b = cur.boundary[f];
+          const core::Vec3 n = (P[b[1]] - P[b[0]]).cross(P[b[2]] - P[b[0]]);
+          if (n.dot(label_direction(cur.labels[f])) > 0) continue;
+          ++wrong_facing;
+          for (int v : b) mark(v);
+        }
+        cur_failures = inverted + wrong_facing + (cur.untangle.untangled ? 0 : 1);
+        done = cur.untangle.untangled && wrong_facing == 0;
+        if (!done)
+          failures += fmt::format("{}{}: {} tets stay inverted, {} boundary triangles face away from their label",
+                                  failures.empty() ? "" : "; ", what, cur.untangle.inverted_after, wrong_facing);
       }
       if (!done) {
         const int n = penalize_around(bnd.surface, vertex_tris, rep.labels, std::move(bad), o.relabel_ring,
@@ -198,8 +212,9 @@ ConstructResult construct_from_prepared(const core::TetMesh& mesh, const Constru
       }
       if (!deformed) continue;
       // Keep the attempt with the fewest inverted tets.
-      if (!have_def || done || cur.untangle.inverted_after < def.untangle.inverted_after) {
+      if (!have_def || done || cur_failures < def_failures) {
         def = std::move(cur);
+        def_failures = cur_failures;
         have_def = true;
       }
     }

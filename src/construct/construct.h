@@ -37,6 +37,10 @@ struct ConstructOptions {
   //! Labeling rounds steered by the fast polycube estimate (polycube_estimate.h) before each
   //! deformation: while the estimate folds triangles, their labels are penalized the same way.
   int estimate_rounds = 0;
+  //! After the repair, at most this many local relabellings against the folds of the fast
+  //! polycube estimate (unfold_labeling(); 0: none). Off by default: on fandisk it trades one
+  //! certified map for a failing one; kept as an option to study.
+  int unfold_moves = 0;
   int relabel_ring = 2;             //!< vertex rings around the failures that are penalized
   double relabel_penalty = 1.0;     //!< added per round, in units of a 90° misfit
   int max_attempts = 8;             //!< labeling + deformation runs in all, at most

@@ -2,7 +2,9 @@
 #include "construct/polycube_estimate.h"
 
 #include "construct/labeling.h"
+#include "construct/labeling_check.h"
 #include "core/errors.h"
+#include "core/log.h"
 #include "solve/sparse_solver.h"
 
 #include <Eigen/Geometry>
@@ -126,6 +128,73 @@ PolycubeEstimate estimate_polycube(const core::TriMesh& surface, const std::vect
   }
   out.edge_distortion = edges.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(edges.size()));
   return out;
+}
+
+UnfoldResult unfold_labeling(const core::TriMesh& surface, std::vector<int> labels, int max_moves) {
+  UnfoldResult r;
+  const int nt = surface.num_cells();
+  std::vector<std::vector<int>> vertex_tris(static_cast<std::size_t>(surface.num_points()));
+  for (int t = 0; t < nt; ++t)
+    for (int v : surface.cells[t]) vertex_tris[v].push_back(t);
+  auto edge_neighbours = [&](int t) {
+    std::vector<int> out;
+    const auto& c = surface.cells[t];
+    for (int e = 0; e < 3; ++e) {
+      const int a = c[e], b = c[(e + 1) % 3];
+      for (int u : vertex_tris[a])
+        if (u != t && std::find(surface.cells[u].begin(), surface.cells[u].end(), b) != surface.cells[u].end())
+          out.push_back(u);
+    }
+    return out;
+  };
+  PolycubeEstimate est = estimate_polycube(surface, labels);
+  r.folded_before = static_cast<int>(est.flipped.size());
+  while (!est.flipped.empty() && r.moves < max_moves) {
+    bool moved = false;
+    for (const int t : est.flipped) {
+      // Targets: the labels of the edge neighbours first, then every other label.
+      std::vector<int> targets;
+      for (int u : edge_neighbours(t))
+        if (labels[u] != labels[t] && std::find(targets.begin(), targets.end(), labels[u]) == targets.end())
+          targets.push_back(labels[u]);
+      for (int l = 0; l < kNumLabels; ++l)
+        if (l != labels[t] && std::find(targets.begin(), targets.end(), l) == targets.end()) targets.push_back(l);
+      // Regions: the triangle alone, then with the triangles of its label around its vertices.
+      std::vector<std::vector<int>> regions{{t}};
+      std::vector<int> ring;
+      for (int v : surface.cells[t])
+        for (int u : vertex_tris[v])
+          if (labels[u] == labels[t] && std::find(ring.begin(), ring.end(), u) == ring.end()) ring.push_back(u);
+      std::sort(ring.begin(), ring.end());
+      regions.push_back(ring);
+      for (const auto& region : regions) {
+        for (int l : targets) {
+          std::vector<int> trial = labels;
+          for (int u : region) trial[u] = l;
+          if (!check_labeling(surface, trial).valid()) {
+            core::logger().debug("unfold: triangle {} ({} triangles) -> label {}: invalid", t, region.size(), l);
+            continue;
+          }
+          PolycubeEstimate e = estimate_polycube(surface, trial);
+          core::logger().debug("unfold: triangle {} ({} triangles) -> label {}: folds {} triangles", t, region.size(), l,
+                               e.flipped.size());
+          if (e.flipped_area < est.flipped_area) {
+            labels.swap(trial);
+            est = std::move(e);
+            ++r.moves;
+            moved = true;
+            break;
+          }
+        }
+        if (moved) break;
+      }
+      if (moved) break;
+    }
+    if (!moved) break;
+  }
+  r.folded_after = static_cast<int>(est.flipped.size());
+  r.labels = std::move(labels);
+  return r;
 }
 
 }  // namespace polycube::construct

@@ -33,4 +33,20 @@ struct PolycubeEstimate {
 //! \throw core::InputError on a wrong number of labels or a label out of range
 PolycubeEstimate estimate_polycube(const core::TriMesh& surface, const std::vector<int>& labels);
 
+//! Result of unfold_labeling().
+struct UnfoldResult {
+  std::vector<int> labels;   //!< #T labels, valid whenever the input was
+  int moves = 0;             //!< accepted relabellings
+  int folded_before = 0;     //!< triangles the estimate folded before
+  int folded_after = 0;      //!< ... and after
+};
+
+//! Local repair of a valid labeling against the folds of its polycube estimate: for each
+//! folded triangle, give it (alone, then with the triangles of its label around its vertices)
+//! the label of an edge neighbour; a move is kept when the labeling stays valid (all three
+//! rules of labeling_check.h) and the estimate folds less area. Stops when nothing folds, no
+//! move helps, or after max_moves moves.
+//! 	hrow as estimate_polycube
+UnfoldResult unfold_labeling(const core::TriMesh& surface, std::vector<int> labels, int max_moves = 50);
+
 }  // namespace polycube::construct

@@ -3,6 +3,7 @@
 //! independent certifier written here.
 #include "construct/certify.h"
 #include "construct/deform.h"
+#include "construct/certifier.h"
 #include "construct/labeling_check.h"
 #include "construct/labeling_repair.h"
 #include "construct/tetrahedralize.h"
@@ -27,51 +28,8 @@ namespace {
 using core::Vec3;
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 
-// --- independent certifier (exact predicates, own boundary extraction) ------------------------
-
-struct Verdict {
-  int bad_model = 0, bad_polycube = 0, off_plane = 0, unlabeled = 0, boundary_faces = 0;
-};
-
-Verdict independent_check(const std::vector<core::Tet>& tets, const std::vector<Vec3>& model,
-                          const std::vector<Vec3>& poly, const std::vector<core::Tri>& tris,
-                          const std::vector<int>& labels) {
-  Verdict v;
-  auto P = [](const Vec3& p) { return K::Point_3(p.x(), p.y(), p.z()); };
-  std::map<std::array<int, 3>, int> face_count;
-  for (const auto& t : tets) {
-    if (CGAL::orientation(P(model[t[0]]), P(model[t[1]]), P(model[t[2]]), P(model[t[3]])) != CGAL::POSITIVE)
-      ++v.bad_model;
-    if (CGAL::orientation(P(poly[t[0]]), P(poly[t[1]]), P(poly[t[2]]), P(poly[t[3]])) != CGAL::POSITIVE)
-      ++v.bad_polycube;
-    for (int skip = 0; skip < 4; ++skip) {
-      std::array<int, 3> f{};
-      int k = 0;
-      for (int i = 0; i < 4; ++i)
-        if (i != skip) f[k++] = t[i];
-      std::sort(f.begin(), f.end());
-      ++face_count[f];
-    }
-  }
-  std::map<std::array<int, 3>, int> label_of;
-  for (std::size_t i = 0; i < tris.size(); ++i) {
-    std::array<int, 3> f{tris[i][0], tris[i][1], tris[i][2]};
-    std::sort(f.begin(), f.end());
-    label_of[f] = labels[i];
-  }
-  for (const auto& [f, n] : face_count) {
-    if (n != 1) continue;
-    ++v.boundary_faces;
-    auto it = label_of.find(f);
-    if (it == label_of.end()) {
-      ++v.unlabeled;
-      continue;
-    }
-    const int a = it->second / 2;
-    if (!(poly[f[0]][a] == poly[f[1]][a] && poly[f[1]][a] == poly[f[2]][a])) ++v.off_plane;
-  }
-  return v;
-}
+using test::independent_check;
+using test::Verdict;
 
 // --- fixtures ---------------------------------------------------------------------------------
 

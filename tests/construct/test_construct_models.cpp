@@ -1,0 +1,67 @@
+// Whole construction (construct_polycube) on the shapes it certifies today: the result is
+// accepted by the independent certifier (certifier.h) and its labeling by the independent
+// labeling validator (validator.h). Shapes where a few tets still stay inverted are listed in
+// the README; they stop with NotCertified and never return a map.
+#include "construct/construct.h"
+#include "core/topology.h"
+#include "io/mesh_io.h"
+#include "samples/samples.h"
+
+#include "construct/certifier.h"
+#include "construct/validator.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace polycube {
+namespace {
+
+const std::filesystem::path kData = POLYCUBE_DATA_DIR;
+
+void expect_certified(const construct::ConstructResult& r, const std::string& what) {
+  const test::Verdict v = test::independent_check(r.map.tets, r.map.model, r.map.polycube, r.boundary, r.labels);
+  EXPECT_TRUE(test::certified(v)) << what << ": bad model " << v.bad_model << ", bad polycube " << v.bad_polycube
+                                  << ", off plane " << v.off_plane << ", unlabeled " << v.unlabeled
+                                  << ", wrong facing " << v.wrong_facing;
+  EXPECT_EQ(v.boundary_faces, static_cast<int>(r.boundary.size())) << what;
+  core::TriMesh surface;
+  surface.points = r.map.model;
+  surface.cells = r.boundary;
+  EXPECT_TRUE(test::validate_labeling(surface, r.labels).valid()) << what;
+  EXPECT_GT(r.charts, 5) << what;
+  EXPECT_GE(r.isometric_average, 1.0) << what;  // max(σ1, 1/σ3) >= 1 for every tet
+}
+
+void construct_file(const std::filesystem::path& path) {
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "missing " << path;
+  construct::ConstructResult r;
+  if (path.extension() == ".mesh") {
+    core::TetMesh mesh = core::tets_of(io::read_mesh(path));
+    mesh.labels.clear();
+    r = construct::construct_polycube(std::move(mesh));
+  } else {
+    r = construct::construct_polycube(io::read_surface(path));
+  }
+  expect_certified(r, path.filename().string());
+}
+
+TEST(ConstructModels, Torus) { construct_file(kData / "surface/torus.obj"); }
+TEST(ConstructModels, CubeMinusSphere) { construct_file(kData / "surface/cube_minus_sphere.obj"); }
+TEST(ConstructModels, TetB0) { construct_file(kData / "tet/B0.mesh"); }
+TEST(ConstructModels, TetSphere) { construct_file(kData / "tet/sphere.mesh"); }
+TEST(ConstructModels, Fandisk) { construct_file(kData / "surface/fandisk.obj"); }
+
+class ConstructSample : public ::testing::TestWithParam<std::string> {};
+TEST_P(ConstructSample, IsCertified) {
+  expect_certified(construct::construct_polycube(samples::make_sample(GetParam())), GetParam());
+}
+INSTANTIATE_TEST_SUITE_P(Samples, ConstructSample, ::testing::Values("box-cylinder", "l-bracket", "ring"),
+                         [](const auto& info) {
+                           std::string n = info.param;
+                           std::replace(n.begin(), n.end(), '-', '_');
+                           return n;
+                         });
+
+}  // namespace
+}  // namespace polycube
