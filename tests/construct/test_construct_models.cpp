@@ -52,6 +52,21 @@ TEST(ConstructModels, TetB0) { construct_file(kData / "tet/B0.mesh"); }
 TEST(ConstructModels, TetSphere) { construct_file(kData / "tet/sphere.mesh"); }
 TEST(ConstructModels, Fandisk) { construct_file(kData / "surface/fandisk.obj"); }
 
+TEST(ConstructModels, DeterministicBitForBit) {
+  const auto path = kData / "surface/torus.obj";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "missing " << path;
+  const core::TriMesh s = io::read_surface(path);
+  const auto a = construct::construct_polycube(s);
+  const auto b = construct::construct_polycube(s);
+  EXPECT_EQ(a.map.tets, b.map.tets);
+  EXPECT_EQ(a.labels, b.labels);
+  ASSERT_EQ(a.map.polycube.size(), b.map.polycube.size());
+  for (std::size_t v = 0; v < a.map.polycube.size(); ++v) {
+    EXPECT_EQ(a.map.polycube[v], b.map.polycube[v]) << v;
+    EXPECT_EQ(a.map.model[v], b.map.model[v]) << v;
+  }
+}
+
 class ConstructSample : public ::testing::TestWithParam<std::string> {};
 TEST_P(ConstructSample, IsCertified) {
   expect_certified(construct::construct_polycube(samples::make_sample(GetParam())), GetParam());
