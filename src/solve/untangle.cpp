@@ -4,6 +4,7 @@
 
 #include "core/errors.h"
 #include "core/log.h"
+#include "core/progress.h"
 #include "solve/sparse_solver.h"
 
 #include <Eigen/Eigenvalues>
@@ -377,7 +378,9 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
   int last_progress = 0;
   double progress_min_det = st.min_det;
 
+  core::ProgressTask task("untangle", std::max(1, o.max_iterations));
   for (int outer = 0; outer < o.max_iterations; ++outer) {
+    task.set(outer);
     ++res.iterations;
     st = evaluate(el, o.attractions, x, eps, lambda, det_target);
     const double E_prev = st.energy;
@@ -499,6 +502,7 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
     y = best_y;
     x = R.apply(y);
   }
+  task.finish();
   core::logger().debug("untangle: assembly {:.2f} s, factorization+solve {:.2f} s, line search {:.2f} s", t_assemble,
                        t_factor, t_search);
   st = evaluate(el, o.attractions, x, eps, lambda, det_target);
