@@ -298,6 +298,74 @@ bool split_boundary_triangle(core::TetMesh& mesh, LabeledBoundary& lb, int f, st
   return true;
 }
 
+//! The elliptic optimization of the polycube positions P, with one **ghost tet** per boundary
+//! triangle: the triangle plus a ghost vertex at height h above its chart plane along the
+//! label's direction (its in-plane coordinates free). The ghost tet is positive exactly when
+//! the triangle faces its label, so the barrier also keeps the boundary from folding over
+//! itself while every real tet is positive (a fold the real tets alone cannot see). Its
+//! reference shape is the model triangle with a point at height h along the model normal.
+//! P (the real vertices) is updated in place.
+solve::UntangleResult untangle_with_ghosts(const core::TetMesh& mesh, const LabeledBoundary& lb,
+                                           const std::vector<int>& vertex_group, const std::vector<int>& var,
+                                           int nvar, std::vector<Vec3>& P, const solve::UntangleOptions& uo,
+                                           double h) {
+  const int np = mesh.num_points();
+  const int nb = static_cast<int>(lb.tris.size());
+  std::vector<Vec3> ref = mesh.points;
+  std::vector<core::Tet> tets = mesh.cells;
+  ref.reserve(static_cast<std::size_t>(np + nb));
+  tets.reserve(mesh.cells.size() + static_cast<std::size_t>(nb));
+  for (int f = 0; f < nb; ++f) {
+    const Tri& t = lb.tris[f];
+    const Vec3 c = (mesh.points[t[0]] + mesh.points[t[1]] + mesh.points[t[2]]) / 3.0;
+    const Vec3 n = (mesh.points[t[1]] - mesh.points[t[0]]).cross(mesh.points[t[2]] - mesh.points[t[0]]).normalized();
+    ref.push_back(c + h * n);
+    tets.push_back({t[0], t[1], t[2], np + f});
+  }
+  // Reduction: the real coordinates as given; each ghost's label-axis coordinate is its
+  // chart's variable + sign·h, the two others are new free variables.
+  const int rows = 3 * (np + nb);
+  int n = nvar;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> B(rows, nvar + 2 * nb);
+  B.reserve(Eigen::VectorXi::Constant(rows, 1));
+  Eigen::VectorXd x0 = Eigen::VectorXd::Zero(rows);
+  for (int i = 0; i < 3 * np; ++i) {
+    if (var[i] >= 0) B.insert(i, var[i]) = 1.0;
+    else x0[i] = P[i / 3][i % 3];
+  }
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(nvar + 2 * nb);
+  for (int i = 0; i < 3 * np; ++i)
+    if (var[i] >= 0) y[var[i]] = P[i / 3][i % 3];
+  for (int f = 0; f < nb; ++f) {
+    const Tri& t = lb.tris[f];
+    const int a = lb.labels[f] / 2;
+    const double sign = lb.labels[f] % 2 == 0 ? 1.0 : -1.0;
+    const int row = 3 * (np + f);
+    const int chart_var = var[3 * static_cast<std::size_t>(t[0]) + a];
+    PC_REQUIRE(vertex_group[3 * static_cast<std::size_t>(t[0]) + a] >= 0 && chart_var >= 0,
+               "deform: a boundary triangle's chart coordinate is not a variable");
+    const Vec3 c = (P[t[0]] + P[t[1]] + P[t[2]]) / 3.0;
+    for (int d = 0; d < 3; ++d) {
+      if (d == a) {
+        B.insert(row + d, chart_var) = 1.0;
+        x0[row + d] = sign * h;
+      } else {
+        B.insert(row + d, n) = 1.0;
+        y[n++] = c[d];
+      }
+    }
+  }
+  B.makeCompressed();
+  solve::LinearReduction R;
+  R.B = std::move(B);
+  R.x0 = std::move(x0);
+  Eigen::VectorXd yy = y.head(n);
+  const solve::UntangleResult ur = solve::untangle(solve::reference_elements(ref, tets), R, yy, uo);
+  const Eigen::VectorXd x = R.apply(yy);
+  for (int v = 0; v < np; ++v) P[v] = x.segment<3>(3 * v);
+  return ur;
+}
+
 //! Local untangling (after the global optimization left a few tets inverted): only the
 //! coordinates within `rings` tet rings of the inverted tets move, chart coordinates stay at
 //! their current value, and ε starts afresh (large ε is safe here, the fixed surroundings keep
@@ -512,6 +580,14 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
   uo.initial_epsilon = o.initial_epsilon;
   uo.tolerance = o.tolerance;
   uo.min_det_target = o.min_det;
+  // Ghost height: a fraction of the mean boundary edge length (model space).
+  double ghost_h = 0;
+  if (o.ghost_height > 0) {
+    double sum = 0;
+    for (const Tri& t : lb.tris)
+      for (int e = 0; e < 3; ++e) sum += (mesh.points[t[e]] - mesh.points[t[(e + 1) % 3]]).norm();
+    ghost_h = o.ghost_height * sum / std::max<std::size_t>(1, 3 * lb.tris.size());
+  }
   for (int round = 0;; ++round) {
     nvar = make_vars(var);
     const int n_points = mesh.num_points();
@@ -520,7 +596,14 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
     for (int v = 0; v < n_points; ++v)
       for (int d = 0; d < 3; ++d) y[var[3 * static_cast<std::size_t>(v) + d]] = P[v][d];
     const solve::TetElements el = solve::reference_elements(mesh.points, mesh.cells);
-    const solve::UntangleResult ur = solve::untangle(el, R, y, uo);
+    solve::UntangleResult ur;
+    if (o.ghost_height > 0) {
+      ur = untangle_with_ghosts(mesh, lb, cv.vertex_group, var, nvar, P, uo, ghost_h);
+      for (int v = 0; v < n_points; ++v)
+        for (int d = 0; d < 3; ++d) y[var[3 * static_cast<std::size_t>(v) + d]] = P[v][d];
+    } else {
+      ur = solve::untangle(el, R, y, uo);
+    }
     if (round == 0) {
       res.untangle = ur;
     } else {  // keep the first run's "before" figures, the last run's outcome
@@ -542,9 +625,14 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
           // the distortion, then take its verdict.
           for (int v = 0; v < n_points; ++v)
             for (int d = 0; d < 3; ++d) y[var[3 * static_cast<std::size_t>(v) + d]] = P[v][d];
-          const solve::UntangleResult again = solve::untangle(el, R, y, uo);
-          for (int v = 0; v < n_points; ++v)
-            for (int d = 0; d < 3; ++d) P[v][d] = y[var[3 * static_cast<std::size_t>(v) + d]];
+          solve::UntangleResult again;
+          if (o.ghost_height > 0) {
+            again = untangle_with_ghosts(mesh, lb, cv.vertex_group, var, nvar, P, uo, ghost_h);
+          } else {
+            again = solve::untangle(el, R, y, uo);
+            for (int v = 0; v < n_points; ++v)
+              for (int d = 0; d < 3; ++d) P[v][d] = y[var[3 * static_cast<std::size_t>(v) + d]];
+          }
           res.untangle.untangled = again.untangled;
           res.untangle.iterations += again.iterations;
           res.untangle.newton_steps += again.newton_steps;

@@ -48,6 +48,10 @@ struct DeformOptions {
   //! When tets stay inverted, split the edges of those tets and optimize again, at most this
   //! many times.
   int refine_rounds = 1;
+  //! Height of the ghost tets (one per boundary triangle, apex above its chart plane; they
+  //! keep the boundary from folding over itself), as a fraction of the mean boundary edge
+  //! length; 0 = no ghost tets.
+  double ghost_height = 0.5;
 };
 
 //! Result of deform_to_polycube().

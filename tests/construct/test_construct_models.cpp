@@ -51,6 +51,8 @@ TEST(ConstructModels, CubeMinusSphere) { construct_file(kData / "surface/cube_mi
 TEST(ConstructModels, TetB0) { construct_file(kData / "tet/B0.mesh"); }
 TEST(ConstructModels, TetSphere) { construct_file(kData / "tet/sphere.mesh"); }
 TEST(ConstructModels, Fandisk) { construct_file(kData / "surface/fandisk.obj"); }
+TEST(ConstructModels, B0Surface) { construct_file(kData / "surface/B0.obj"); }
+TEST(ConstructModels, TetS3) { construct_file(kData / "tet/S3.mesh"); }
 
 TEST(ConstructModels, DeterministicBitForBit) {
   const auto path = kData / "surface/torus.obj";
@@ -71,7 +73,7 @@ class ConstructSample : public ::testing::TestWithParam<std::string> {};
 TEST_P(ConstructSample, IsCertified) {
   expect_certified(construct::construct_polycube(samples::make_sample(GetParam())), GetParam());
 }
-INSTANTIATE_TEST_SUITE_P(Samples, ConstructSample, ::testing::Values("box-cylinder", "l-bracket", "ring"),
+INSTANTIATE_TEST_SUITE_P(Samples, ConstructSample, ::testing::Values("box-cylinder", "l-bracket", "flange", "ring"),
                          [](const auto& info) {
                            std::string n = info.param;
                            std::replace(n.begin(), n.end(), '-', '_');
