@@ -192,6 +192,10 @@ void register_construct(CLI::App& app) {
                   "and label again, at most this many times")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  sub->add_option("--time-limit", c.time_limit,
+                  "Seconds after which no new labeling/deformation attempt starts (0: no limit)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   sub->add_option("--keep-failed", opts->keep_failed,
                   "When certification fails, write the best attempt to this folder as uncertified_model.mesh and "
                   "uncertified_polycube.mesh (boundary labels as triangle references), for diagnosis");

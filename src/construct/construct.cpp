@@ -147,6 +147,12 @@ ConstructResult construct_from_prepared(const core::TetMesh& mesh, const Constru
     lopt.compactness *= factors[fi];
     lopt.penalty.clear();
     for (int round = 0; round <= o.relabel_rounds && !done && attempts < o.max_attempts; ++round) {
+      if (attempts > 0 && o.time_limit > 0 && since(t0) > o.time_limit) {
+        failures += fmt::format("{}time limit of {:g} s reached after {} attempt(s)", failures.empty() ? "" : "; ",
+                                o.time_limit, attempts);
+        fi = factors.size();
+        break;
+      }
       ++attempts;
       const SteeredLabeling sl = steered_labeling(bnd.surface, vertex_tris, lopt, o, res.seconds);
       const RepairResult& rep = sl.repair;

@@ -44,6 +44,8 @@ struct ConstructOptions {
   int relabel_ring = 2;             //!< vertex rings around the failures that are penalized
   double relabel_penalty = 1.0;     //!< added per round, in units of a 90° misfit
   int max_attempts = 8;             //!< labeling + deformation runs in all, at most
+  //! No new attempt starts after this many seconds (0: no limit; a running attempt finishes).
+  double time_limit = 0;
 };
 
 //! Wall time of each stage (seconds).
