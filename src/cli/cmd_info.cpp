@@ -3,6 +3,7 @@
 #include "cli/app.h"
 #include "core/topology.h"
 #include "io/mesh_io.h"
+#include "quality/scaled_jacobian.h"
 
 #include <fmt/format.h>
 
@@ -66,6 +67,14 @@ void add_volume(nlohmann::json& j, std::string& text, const char* key, const cha
   text += fmt::format("{}: {} components, {} inverted, {} boundary faces{}\n", what,
                       r.components, r.inverted_cells, r.boundary_faces,
                       r.nonmanifold_faces ? fmt::format(", {} NON-MANIFOLD faces", r.nonmanifold_faces) : "");
+  // Element quality (Verdict scaled Jacobian; degenerate elements count as invalid).
+  quality::ScaledJacobianOptions so;
+  so.keep_values = false;
+  const quality::ScaledJacobianSummary sj = quality::scaled_jacobian(m, so);
+  j[key]["scaled_jacobian"] = {
+      {"min", sj.min}, {"average", sj.average}, {"inverted", sj.inverted}, {"invalid", sj.invalid}};
+  text += fmt::format("  scaled Jacobian: min {:.4f}, average {:.4f}, {} inverted, {} invalid\n", sj.min, sj.average,
+                      sj.inverted, sj.invalid);
   text += "  boundary surface:\n" + surface_text(r.boundary, "    ");
   j["genus"] = r.boundary.genus;
 }

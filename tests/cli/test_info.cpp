@@ -87,6 +87,26 @@ TEST(CliInfo, SharedDataCountsAndGenusMatchTheDataReadme) {
   }
 }
 
+TEST(CliInfo, VolumeQualitySummaryAgreesWithTheQualityCommand) {
+  const fs::path data(POLYCUBE_DATA_DIR);
+  for (const char* rel : {"hex/rockerarm.mesh", "hex/ellipsoid.mesh", "tet/B0.mesh"}) {
+    const fs::path file = data / rel;
+    if (!fs::exists(file)) GTEST_SKIP() << "missing " << file;
+    SCOPED_TRACE(rel);
+    const auto info = run_cli("info --json '" + file.string() + "'");
+    const auto quality = run_cli("quality --json '" + file.string() + "'");
+    ASSERT_EQ(info.exit_code, 0) << info.err;
+    ASSERT_EQ(quality.exit_code, 0) << quality.err;
+    const auto ji = nlohmann::json::parse(info.out);
+    const auto jq = nlohmann::json::parse(quality.out)["scaled_jacobian"];
+    const auto& js = ji[std::string(rel).rfind("hex", 0) == 0 ? "hexahedra_report" : "tetrahedra_report"]["scaled_jacobian"];
+    EXPECT_DOUBLE_EQ(js["min"].get<double>(), jq["min"].get<double>());
+    EXPECT_DOUBLE_EQ(js["average"].get<double>(), jq["average"].get<double>());
+    EXPECT_EQ(js["inverted"].get<int>(), jq["inverted"].get<int>());
+    EXPECT_GT(js["min"].get<double>(), 0.0);  // the shared meshes have no inverted element
+  }
+}
+
 TEST(CliInfo, MissingFileIsBadInput) {
   const auto r = run_cli("info /nonexistent/model.obj");
   EXPECT_EQ(r.exit_code, 2);
