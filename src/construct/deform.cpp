@@ -1,6 +1,7 @@
 //! Polycube deformation (see deform.h).
 #include "construct/deform.h"
 
+#include "core/disjoint_sets.h"
 #include "core/errors.h"
 #include "core/log.h"
 #include "core/topology.h"
@@ -28,19 +29,6 @@ using Clock = std::chrono::steady_clock;
 
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(int n) : parent(static_cast<std::size_t>(n)) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);  // smallest index is the root
-  }
-};
 
 std::array<int, 3> sorted(const Tri& t) {
   std::array<int, 3> k{t[0], t[1], t[2]};
@@ -109,7 +97,7 @@ ChartVars chart_variables(int nv, const std::vector<Tri>& tris, const std::vecto
       edges.push_back({std::min(a, b), std::max(a, b), t});
     }
   std::sort(edges.begin(), edges.end());
-  UnionFind uf(nb);
+  core::DisjointSets uf(static_cast<std::size_t>(nb));
   for (std::size_t i = 0; i + 1 < edges.size(); ++i)
     if (edges[i][0] == edges[i + 1][0] && edges[i][1] == edges[i + 1][1] &&
         labels[edges[i][2]] == labels[edges[i + 1][2]])
@@ -124,7 +112,7 @@ ChartVars chart_variables(int nv, const std::vector<Tri>& tris, const std::vecto
   std::vector<int> chart_axis(static_cast<std::size_t>(cv.num_charts));
   for (int t = 0; t < nb; ++t) chart_axis[cv.tri_chart[t]] = labels[t] / 2;
   // Charts of one axis sharing a vertex share their coordinate.
-  UnionFind cu(cv.num_charts);
+  core::DisjointSets cu(static_cast<std::size_t>(cv.num_charts));
   std::vector<int> first(3 * static_cast<std::size_t>(nv), -1);
   for (int t = 0; t < nb; ++t) {
     const int c = cv.tri_chart[t];
@@ -596,49 +584,41 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
     for (int v = 0; v < n_points; ++v)
       for (int d = 0; d < 3; ++d) y[var[3 * static_cast<std::size_t>(v) + d]] = P[v][d];
     const solve::TetElements el = solve::reference_elements(mesh.points, mesh.cells);
-    solve::UntangleResult ur;
-    if (o.ghost_height > 0) {
-      ur = untangle_with_ghosts(mesh, lb, cv.vertex_group, var, nvar, P, uo, ghost_h);
+    // One elliptic optimization from P (with ghost tets unless disabled); P and y follow.
+    auto optimize = [&] {
+      if (o.ghost_height > 0) {
+        const solve::UntangleResult r = untangle_with_ghosts(mesh, lb, cv.vertex_group, var, nvar, P, uo, ghost_h);
+        for (int v = 0; v < n_points; ++v)
+          for (int d = 0; d < 3; ++d) y[var[3 * static_cast<std::size_t>(v) + d]] = P[v][d];
+        return r;
+      }
       for (int v = 0; v < n_points; ++v)
         for (int d = 0; d < 3; ++d) y[var[3 * static_cast<std::size_t>(v) + d]] = P[v][d];
-    } else {
-      ur = solve::untangle(el, R, y, uo);
-    }
-    if (round == 0) {
-      res.untangle = ur;
-    } else {  // keep the first run's "before" figures, the last run's outcome
-      res.untangle.untangled = ur.untangled;
-      res.untangle.iterations += ur.iterations;
-      res.untangle.newton_steps += ur.newton_steps;
-      res.untangle.inverted_after = ur.inverted_after;
-      res.untangle.min_det = ur.min_det;
-      res.untangle.energy = ur.energy;
-      res.untangle.epsilon = ur.epsilon;
-    }
-    for (int v = 0; v < n_points; ++v)
-      for (int d = 0; d < 3; ++d) P[v][d] = y[var[3 * static_cast<std::size_t>(v) + d]];
+      const solve::UntangleResult r = solve::untangle(el, R, y, uo);
+      for (int v = 0; v < n_points; ++v)
+        for (int d = 0; d < 3; ++d) P[v][d] = y[var[3 * static_cast<std::size_t>(v) + d]];
+      return r;
+    };
+    // Keep the first run's "before" figures and the last run's outcome.
+    auto merge = [&](const solve::UntangleResult& r) {
+      res.untangle.untangled = r.untangled;
+      res.untangle.iterations += r.iterations;
+      res.untangle.newton_steps += r.newton_steps;
+      res.untangle.inverted_after = r.inverted_after;
+      res.untangle.min_det = r.min_det;
+      res.untangle.energy = r.energy;
+      res.untangle.epsilon = r.epsilon;
+    };
+    const solve::UntangleResult ur = optimize();
+    if (round == 0) res.untangle = ur;
+    else merge(ur);
     if (!ur.untangled) {
-      // A few tets left: untangle locally with a fresh ε, in growing regions.
+      // A few tets left: untangle locally with a fresh ε, in growing regions, then go back
+      // through the global optimizer (from a valid state it stays valid) to spread the
+      // distortion, and take its verdict.
       for (int rings : {2, 4, 8}) {
         if (untangle_locally(mesh, cv.vertex_group, P, rings, uo) == 0) {
-          // Back through the global optimizer (from a valid state, it stays valid) to spread
-          // the distortion, then take its verdict.
-          for (int v = 0; v < n_points; ++v)
-            for (int d = 0; d < 3; ++d) y[var[3 * static_cast<std::size_t>(v) + d]] = P[v][d];
-          solve::UntangleResult again;
-          if (o.ghost_height > 0) {
-            again = untangle_with_ghosts(mesh, lb, cv.vertex_group, var, nvar, P, uo, ghost_h);
-          } else {
-            again = solve::untangle(el, R, y, uo);
-            for (int v = 0; v < n_points; ++v)
-              for (int d = 0; d < 3; ++d) P[v][d] = y[var[3 * static_cast<std::size_t>(v) + d]];
-          }
-          res.untangle.untangled = again.untangled;
-          res.untangle.iterations += again.iterations;
-          res.untangle.newton_steps += again.newton_steps;
-          res.untangle.inverted_after = again.inverted_after;
-          res.untangle.min_det = again.min_det;
-          res.untangle.energy = again.energy;
+          merge(optimize());
           break;
         }
       }

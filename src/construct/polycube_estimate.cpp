@@ -3,6 +3,7 @@
 
 #include "construct/labeling.h"
 #include "construct/labeling_check.h"
+#include "core/disjoint_sets.h"
 #include "core/errors.h"
 #include "core/log.h"
 #include "solve/sparse_solver.h"
@@ -20,19 +21,6 @@ namespace polycube::construct {
 
 namespace {
 
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(int n) : parent(static_cast<std::size_t>(n)) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 }  // namespace
 
@@ -59,7 +47,7 @@ PolycubeEstimate estimate_polycube(const core::TriMesh& surface, const std::vect
   out.points = surface.points;
   for (int a = 0; a < 3; ++a) {
     // Chart-of-axis-a vertices share one unknown per connected group (vertex-connected).
-    UnionFind uf(nv);
+    core::DisjointSets uf(static_cast<std::size_t>(nv));
     std::vector<char> on(static_cast<std::size_t>(nv), 0);
     for (int t = 0; t < nt; ++t) {
       if (label_axis(labels[t]) != a) continue;

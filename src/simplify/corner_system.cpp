@@ -1,5 +1,6 @@
 #include "simplify/corner_system.h"
 
+#include "core/disjoint_sets.h"
 #include "core/errors.h"
 
 #include <algorithm>
@@ -13,22 +14,7 @@ namespace {
 
 using structure::PolycubeStructure;
 
-class DisjointSets {
- public:
-  explicit DisjointSets(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int find(int x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<int> parent_;
-};
+using core::DisjointSets;
 
 //! Corners of a chart (all loops), sorted, unique.
 std::vector<int> chart_corners(const PolycubeStructure& s, int chart) {

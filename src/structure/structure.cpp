@@ -1,5 +1,6 @@
 #include "structure/structure.h"
 
+#include "core/disjoint_sets.h"
 #include "core/errors.h"
 #include "core/topology.h"
 
@@ -17,25 +18,7 @@ namespace {
 
 using core::Vec3;
 
-//! Union-find; roots are the lowest members.
-class DisjointSets {
- public:
-  explicit DisjointSets(std::size_t n) : parent_(n) {
-    std::iota(parent_.begin(), parent_.end(), 0);
-  }
-  int find(int x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<int> parent_;
-};
+using core::DisjointSets;
 
 //! In-plane axes (u, v) of a chart so that e_u x e_v is its outward normal.
 std::pair<int, int> plane_axes(int axis, int sign) {
