@@ -12,17 +12,19 @@ namespace polycube::core {
 
 class DisjointSets {
  public:
-  explicit DisjointSets(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  explicit DisjointSets(std::size_t n = 0) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
   //! Root (lowest member) of the set of x.
   int find(int x) {
     while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
     return x;
   }
-  //! Merge the sets of a and b.
-  void unite(int a, int b) {
+  //! Merge the sets of a and b. \return false when they were one set already.
+  bool unite(int a, int b) {
     a = find(a);
     b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+    if (a == b) return false;
+    parent_[std::max(a, b)] = std::min(a, b);
+    return true;
   }
 
  private:

@@ -1,5 +1,6 @@
 #include "simplify/corner_alignment.h"
 
+#include "core/disjoint_sets.h"
 #include "core/errors.h"
 #include "solve/milp.h"
 
@@ -18,24 +19,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-class DisjointSets {
- public:
-  explicit DisjointSets(std::size_t n = 0) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int find(int x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  bool unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return false;
-    parent_[std::max(a, b)] = std::min(a, b);
-    return true;
-  }
-
- private:
-  std::vector<int> parent_;
-};
+using core::DisjointSets;
 
 //! The state of one axis: merged classes (groups), the contracted constraint DAG and its
 //! reachability, and the current coordinates.
