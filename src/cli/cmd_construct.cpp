@@ -160,8 +160,7 @@ void register_construct(CLI::App& app) {
       "construct",
       "Build a certified polycube map: tetrahedralize, label, repair, deform, untangle, certify");
   sub->add_option("input", opts->input, "Surface (.obj .off .stl .ply .mesh) or tet mesh (.mesh .vtk .msh)")
-      ->required()
-      ->check(CLI::ExistingFile);
+      ->required();
   sub->add_option("-o,--output", opts->output_dir,
                   "Output folder (model.mesh, polycube.mesh, labeling.txt, report.json)")
       ->required();

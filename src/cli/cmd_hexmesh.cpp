@@ -126,11 +126,9 @@ CLI::App* add_common(CLI::App& app, const char* name, const char* help,
                      const std::shared_ptr<MeshOptions>& opts, bool hex) {
   CLI::App* sub = app.add_subcommand(name, help);
   sub->add_option("model", opts->model, "Model-space tet mesh of the map (.mesh)")
-      ->required()
-      ->check(CLI::ExistingFile);
+      ->required();
   sub->add_option("polycube", opts->polycube, "Polycube-space tet mesh with the same tets (.mesh)")
-      ->required()
-      ->check(CLI::ExistingFile);
+      ->required();
   sub->add_option("-o,--output", opts->output,
                   hex ? "Hex mesh in model space (.mesh .vtk .msh)"
                       : "Quad mesh in model space (.obj .off .ply .mesh .vtk)")

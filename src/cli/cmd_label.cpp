@@ -174,8 +174,7 @@ void register_label(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "label", "Tetrahedralize a closed surface (or take a tet mesh) and compute a valid polycube labeling");
   sub->add_option("input", opts->input, "Surface (.obj .off .stl .ply .mesh) or tet mesh (.mesh .vtk .msh)")
-      ->required()
-      ->check(CLI::ExistingFile);
+      ->required();
   sub->add_option("-o,--output", opts->output_dir, "Output folder (tets.mesh, labeling.txt, report.json)")
       ->required();
   sub->add_option("--quality", opts->tet.quality, "TetGen radius-edge ratio bound (0: none)")

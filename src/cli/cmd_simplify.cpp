@@ -114,10 +114,9 @@ void register_simplify(CLI::App& app) {
   auto opts = std::make_shared<SimplifyCliOptions>();
   CLI::App* sub = app.add_subcommand(
       "simplify", "Polycube simplification: align corners on the integer lattice for the coarsest block structure");
-  sub->add_option("model", opts->model, "Model-space tet mesh of the map (.mesh)")->required()->check(CLI::ExistingFile);
+  sub->add_option("model", opts->model, "Model-space tet mesh of the map (.mesh)")->required();
   sub->add_option("polycube", opts->polycube, "Polycube-space tet mesh of the map (.mesh)")
-      ->required()
-      ->check(CLI::ExistingFile);
+      ->required();
   sub->add_option("-o,--output", opts->output_dir, "Output folder (model.mesh, polycube.mesh, report.json)")
       ->required();
   auto& al = opts->simplify.align;

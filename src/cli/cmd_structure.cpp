@@ -72,11 +72,9 @@ void register_structure(CLI::App& app) {
                                      "Validate a polycube map and print its structure: charts, "
                                      "edges (convex/concave), corners, faces");
   sub->add_option("model", opts->model, "Model-space tet mesh of the map (.mesh)")
-      ->required()
-      ->check(CLI::ExistingFile);
+      ->required();
   sub->add_option("polycube", opts->polycube, "Polycube-space tet mesh with the same tets (.mesh)")
-      ->required()
-      ->check(CLI::ExistingFile);
+      ->required();
   sub->add_option("-o,--output", opts->output,
                   "Write the charts, edges and corners as a legacy VTK file (.vtk)");
   sub->add_option("--space", opts->space, "Draw the structure in polycube or model space")

@@ -114,6 +114,19 @@ TEST(CliInfo, MissingFileIsBadInput) {
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
 
+TEST(CliInfo, EveryReaderGivesExitTwoOnAMissingFile) {
+  const std::string m = "/nonexistent/m.mesh", p = "/nonexistent/p.mesh";
+  for (const std::string& args :
+       {"info " + m, "convert " + m + " /tmp/x.vtk", "quality " + m, "label " + m + " -o /tmp/pc_missing",
+        "construct " + m + " -o /tmp/pc_missing", "structure " + m + " " + p, "hexmesh " + m + " " + p + " -o /tmp/x.mesh",
+        "quadmesh " + m + " " + p + " -o /tmp/x.vtk", "simplify " + m + " " + p + " -o /tmp/pc_missing"}) {
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_NE(r.err.find("/nonexistent/"), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+  }
+}
+
 TEST(CliInfo, UsageErrorsExitWithOne) {
   EXPECT_EQ(run_cli("").exit_code, 1);
   EXPECT_EQ(run_cli("no-such-subcommand").exit_code, 1);
