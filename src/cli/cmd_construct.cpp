@@ -7,6 +7,7 @@
 #include "core/log.h"
 #include "io/mesh_io.h"
 #include "io/polycube_map_io.h"
+#include "pipeline/input.h"
 
 #include <fmt/format.h>
 
@@ -25,35 +26,8 @@ struct ConstructCliOptions {
 };
 
 construct::ConstructResult run_from_file(const ConstructCliOptions& o) {
-  const io::Format format = io::format_from_path(o.input);
-  core::MeshData data;
-  if (io::is_volume_format(format)) {
-    data = io::read_mesh(o.input);
-    if (!data.tets.empty()) {
-      core::TetMesh mesh = core::tets_of(data);
-      mesh.labels.clear();
-      try {
-        return construct::construct_polycube(std::move(mesh), o.construct);
-      } catch (const core::InputError& e) {
-        throw core::InputError(o.input, 0, e.what());
-      }
-    }
-    if (!data.hexes.empty())
-      throw core::InputError(o.input, 0, "hexahedral meshes are not accepted; give a surface or a tet mesh");
-  }
-  core::TriMesh surface;
-  if (io::is_volume_format(format)) {
-    surface = core::triangles_of(data);
-    surface.labels.clear();
-    if (surface.cells.empty()) throw core::InputError(o.input, 0, "the file holds no triangle and no tet");
-  } else {
-    surface = io::read_surface(o.input);
-  }
-  try {
-    return construct::construct_polycube(surface, o.construct);
-  } catch (const core::InputError& e) {
-    throw core::InputError(o.input, 0, e.what());
-  }
+  const pipeline::ConstructInput in = pipeline::read_construct_input(o.input);
+  return pipeline::construct_from_input(in, o.input, o.construct);
 }
 
 //! The best uncertified attempt, written for diagnosis under names that say so.

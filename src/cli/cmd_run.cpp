@@ -1,0 +1,151 @@
+//! `polycube run INPUT -o DIR`: the whole chain (construct -> simplify -> hexmesh -> optimize,
+//! plus the quad surface mesh), every intermediate result in DIR, report.json and a summary
+//! table. A failing stage stops the chain with exit code 3 (2 for bad input), names the stage
+//! and keeps what the earlier stages wrote.
+#include "cli/app.h"
+#include "core/errors.h"
+#include "io/mesh_io.h"
+#include "pipeline/pipeline.h"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+namespace polycube::cli {
+
+namespace {
+
+struct RunCliOptions {
+  std::string input;
+  std::string output_dir;
+  bool no_simplify = false;
+  bool no_optimize = false;
+  pipeline::RunOptions run;
+};
+
+std::string figure(double v, const char* fmt_spec = "{:.3f}") {
+  return v < -1.5 ? std::string("-") : fmt::format(fmt::runtime(fmt_spec), v);
+}
+std::string count(int v) { return v < 0 ? std::string("-") : std::to_string(v); }
+
+nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
+  nlohmann::json stages = nlohmann::json::array();
+  for (const auto& s : r.stages) stages.push_back({{"stage", s.name}, {"ok", s.ok}, {"seconds", s.seconds}});
+  nlohmann::json j = {
+      {"input", o.input},
+      {"ok", r.ok()},
+      {"stages", stages},
+      {"tets", r.tets},
+      {"charts", r.charts},
+      {"corners", r.corners},
+      {"isometric_average", r.isometric_average},
+      {"isometric_max", r.isometric_max},
+      {"hex_domains_before", r.hex_domains_before},
+      {"hex_domains_after", r.hex_domains_after},
+      {"quad_domains_before", r.quad_domains_before},
+      {"quad_domains_after", r.quad_domains_after},
+      {"grid_scale", r.grid_scale},
+      {"hexes", r.hexes},
+      {"quads", r.quads},
+      {"gridded", {{"inverted", r.inverted_gridded}, {"msj", r.msj_gridded}, {"asj", r.asj_gridded}}},
+      {"final", {{"inverted", r.inverted}, {"msj", r.msj}, {"asj", r.asj}, {"domains", r.final_domains},
+                 {"hausdorff_relative", r.hausdorff_relative}}},
+      {"total_seconds", r.total_seconds},
+      {"files", r.files}};
+  if (!r.ok()) j["failure"] = {{"stage", r.failed_stage}, {"reason", r.failure}};
+  return j;
+}
+
+std::string summary_table(const pipeline::RunResult& r) {
+  std::string t;
+  t += "| stage | time (s) | result |\n|---|---:|---|\n";
+  for (const auto& s : r.stages) {
+    std::string what;
+    if (!s.ok) what = "FAILED";
+    else if (s.name == "construct")
+      what = fmt::format("{} tets, {} charts, {} corners, isometric avg {} max {}", r.tets, r.charts, r.corners,
+                         figure(r.isometric_average), figure(r.isometric_max));
+    else if (s.name == "simplify")
+      what = fmt::format("#D {} -> {}, #dom {} -> {}", r.hex_domains_before, r.hex_domains_after,
+                         r.quad_domains_before, r.quad_domains_after);
+    else if (s.name == "hexmesh")
+      what = fmt::format("scale {:.4g}: {} hexes, {} quads; mSJ {} aSJ {}, {} inverted", r.grid_scale, r.hexes,
+                         r.quads, figure(r.msj_gridded), figure(r.asj_gridded), count(r.inverted_gridded));
+    else if (s.name == "optimize")
+      what = fmt::format("{} iterations", count(r.iterations_optimize));
+    else if (s.name == "quality")
+      what = fmt::format("mSJ {} aSJ {}, {} inverted, #D {}, Hausdorff {} of the bbox diagonal", figure(r.msj),
+                         figure(r.asj), count(r.inverted), count(r.final_domains),
+                         figure(r.hausdorff_relative, "{:.5f}"));
+    else
+      what = "ok";
+    t += fmt::format("| {} | {:.2f} | {} |\n", s.name, s.seconds, what);
+  }
+  t += fmt::format("| total | {:.2f} | |\n", r.total_seconds);
+  return t;
+}
+
+void run_run(RunCliOptions o) {
+  namespace fs = std::filesystem;
+  o.run.simplify = !o.no_simplify;
+  o.run.optimize = !o.no_optimize;
+  const bool show = !global_options().quiet && !global_options().json;
+  o.run.on_stage = [show](int i, int n, const std::string& name) {
+    if (show) std::fprintf(stderr, "[%d/%d] %s\n", i, n, name.c_str());
+  };
+  const pipeline::RunResult r = pipeline::run_pipeline(o.input, o.output_dir, o.run);
+  const fs::path dir(o.output_dir);
+  nlohmann::json j = to_json(r, o);
+  io::write_text_atomic(dir / "report.json", j.dump(2) + "\n");
+  if (!r.ok()) {
+    const std::string msg = fmt::format("stage {} failed: {} (earlier results and report.json are in {})",
+                                        r.failed_stage, r.failure, dir.string());
+    if (r.bad_input) throw core::InputError(msg);
+    if (!global_options().json && !global_options().quiet) std::fputs(summary_table(r).c_str(), stdout);
+    throw core::GeometryError(msg);
+  }
+  print_result(j, summary_table(r) + fmt::format("wrote {} (open hex_quality.vtk and quad.vtk in ParaView)", dir.string()));
+}
+
+}  // namespace
+
+void register_run(CLI::App& app) {
+  auto opts = std::make_shared<RunCliOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "run", "The whole chain on a surface or tet mesh: construct -> simplify -> hexmesh (+ quad mesh) -> optimize, "
+             "with every intermediate result, report.json and a summary table");
+  sub->add_option("input", opts->input, "Closed surface (.obj .off .stl .ply .mesh) or tet mesh (.mesh .vtk .msh)")
+      ->required();
+  sub->add_option("-o,--output", opts->output_dir,
+                  "Output folder: construct/ and simplify/ maps, hex.mesh, hex_optimized.mesh, hex_quality.vtk, "
+                  "quad.vtk, report.json")
+      ->required();
+  sub->add_option("--hexes", opts->run.target_hexes, "About this many hexes in the hex mesh")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  sub->add_flag("--no-simplify", opts->no_simplify, "Mesh the constructed map without corner alignment");
+  sub->add_flag("--no-optimize", opts->no_optimize, "Keep the gridded hex mesh as it is");
+  auto& c = opts->run.construct;
+  sub->add_option("--compactness", c.labeling.compactness,
+                  "Compactness vs fidelity trade-off of the labeling (larger: fewer, smoother charts)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--max-volume", c.tetrahedralize.max_volume,
+                  "Resolution of the tet mesh: largest tet volume as a fraction of the bounding-box volume (0: no "
+                  "bound)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--time-limit", c.time_limit,
+                  "Seconds after which the construction starts no new labeling/deformation attempt (0: no limit)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--lambda-min", opts->run.simplify_options.align.lambda_min,
+                  "Simplification: stop before an iteration whose lambda is below this (0: until convergence)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  sub->callback([opts] { run_run(*opts); });
+}
+
+}  // namespace polycube::cli

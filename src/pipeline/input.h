@@ -1,0 +1,31 @@
+#pragma once
+//! \file input.h
+//! \brief Reading the input of the construction: a closed triangle surface (.obj .off .stl .ply,
+//! or the triangles of a .mesh/.vtk/.msh) or a tet mesh (.mesh .vtk .msh).
+
+#include "construct/construct.h"
+#include "core/types.h"
+
+#include <filesystem>
+#include <optional>
+
+namespace polycube::pipeline {
+
+//! The input of a construction.
+struct ConstructInput {
+  std::optional<core::TetMesh> tets;     //!< set for tet-mesh inputs
+  std::optional<core::TriMesh> surface;  //!< set for surface inputs
+  //! The surface the results are compared with: the input surface, or the tet mesh's boundary.
+  core::TriMesh target;
+};
+
+//! Read a construction input and check what can be checked before heavy work: a surface must
+//! be closed and manifold; a hex mesh is refused.
+//! \throw core::InputError naming the file
+ConstructInput read_construct_input(const std::filesystem::path& path);
+
+//! Run the construction on a read input. InputErrors are re-thrown naming the file.
+construct::ConstructResult construct_from_input(const ConstructInput& input, const std::filesystem::path& path,
+                                                const construct::ConstructOptions& options);
+
+}  // namespace polycube::pipeline

@@ -1,0 +1,209 @@
+//! The whole chain (see pipeline.h).
+#include "pipeline/pipeline.h"
+
+#include "core/errors.h"
+#include "core/log.h"
+#include "core/topology.h"
+#include "io/mesh_io.h"
+#include "io/polycube_map_io.h"
+#include "mesh/grid.h"
+#include "pipeline/input.h"
+#include "quality/report.h"
+#include "quality/scaled_jacobian.h"
+
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+namespace polycube::pipeline {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+//! Signed volume of the map's polycube (lattice units cubed when it is integer).
+double polycube_volume(const core::PolycubeMap& map) {
+  double v = 0.0;
+  for (const auto& t : map.tets) {
+    const core::Vec3 a = map.polycube[t[1]] - map.polycube[t[0]];
+    const core::Vec3 b = map.polycube[t[2]] - map.polycube[t[0]];
+    const core::Vec3 c = map.polycube[t[3]] - map.polycube[t[0]];
+    v += a.dot(b.cross(c)) / 6.0;
+  }
+  return v;
+}
+
+void write_vtk(const std::filesystem::path& path, core::MeshData data, std::vector<core::Field> fields) {
+  data.cell_data = std::move(fields);
+  io::write_mesh(path, data);
+}
+
+//! Runs the stages in order; the first failure stops the chain.
+class Runner {
+ public:
+  Runner(RunResult& r, const RunOptions& o, int count) : r_(r), o_(o), count_(count) {}
+
+  //! Run `body` as stage `name`; false when it (or an earlier stage) failed.
+  template <class F>
+  bool stage(const std::string& name, F&& body) {
+    if (!r_.ok()) return false;
+    ++index_;
+    if (o_.on_stage) o_.on_stage(index_, count_, name);
+    core::logger().info("run: stage {}/{}: {}", index_, count_, name);
+    StageRecord rec{name, 0.0, false};
+    const auto t = Clock::now();
+    try {
+      body();
+      rec.ok = true;
+    } catch (const core::InputError& e) {
+      fail(name, e.what(), true);
+    } catch (const core::Error& e) {
+      fail(name, e.what(), false);
+    } catch (const std::bad_alloc&) {
+      fail(name, "out of memory", false);
+    }
+    rec.seconds = std::chrono::duration<double>(Clock::now() - t).count();
+    r_.stages.push_back(rec);
+    return rec.ok;
+  }
+
+ private:
+  void fail(const std::string& name, const std::string& why, bool bad_input) {
+    r_.failed_stage = name;
+    r_.failure = why;
+    r_.bad_input = bad_input;
+  }
+  RunResult& r_;
+  const RunOptions& o_;
+  int count_;
+  int index_ = 0;
+};
+
+}  // namespace
+
+double RunResult::seconds(const std::string& stage) const {
+  for (const auto& s : stages)
+    if (s.name == stage) return s.seconds;
+  return 0.0;
+}
+
+RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem::path& out_dir,
+                       const RunOptions& o) {
+  namespace fs = std::filesystem;
+  const auto t_start = Clock::now();
+  RunResult r;
+  if (o.target_hexes <= 0) throw core::InputError("the target number of hexes must be positive");
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (ec) throw core::InputError(fmt::format("cannot create the output folder {}: {}", out_dir.string(), ec.message()));
+
+  const int count = 4 + (o.simplify ? 1 : 0) + (o.optimize ? 1 : 0);
+  Runner run(r, o, count);
+  auto wrote = [&](const fs::path& p) { r.files.push_back(p.string()); };
+
+  // 1. input checks (cheap: a surface that is open or non-manifold stops here, exit 2)
+  ConstructInput in;
+  run.stage("input", [&] { in = read_construct_input(input); });
+
+  // 2. construction
+  core::PolycubeMap map;
+  run.stage("construct", [&] {
+    const construct::ConstructResult c = construct_from_input(in, input, o.construct);
+    r.tets = c.map.num_tets();
+    r.charts = c.charts;
+    r.corners = c.corners;
+    r.isometric_average = c.isometric_average;
+    r.isometric_max = c.isometric_max;
+    fs::create_directories(out_dir / "construct");
+    io::write_polycube_map(out_dir / "construct" / "model.mesh", out_dir / "construct" / "polycube.mesh", c.map);
+    wrote(out_dir / "construct" / "model.mesh");
+    wrote(out_dir / "construct" / "polycube.mesh");
+    map = c.map;
+  });
+
+  // 3. simplification
+  bool integer_map = false;
+  if (o.simplify)
+    run.stage("simplify", [&] {
+      const simplify::SimplifyResult s = simplify::simplify_map(map, o.simplify_options);
+      r.hex_domains_before = s.before.hex_domains;
+      r.hex_domains_after = s.after.hex_domains;
+      r.quad_domains_before = s.before.quad_domains;
+      r.quad_domains_after = s.after.quad_domains;
+      if (!s.fit.certified) {
+        std::string why;
+        for (const auto& f : s.fit.failures) why += (why.empty() ? "" : "; ") + f;
+        throw core::GeometryError("the simplified map could not be certified: " + why +
+                                  " (run with --no-simplify to mesh the unsimplified map)");
+      }
+      fs::create_directories(out_dir / "simplify");
+      io::write_polycube_map(out_dir / "simplify" / "model.mesh", out_dir / "simplify" / "polycube.mesh", s.fit.map);
+      wrote(out_dir / "simplify" / "model.mesh");
+      wrote(out_dir / "simplify" / "polycube.mesh");
+      map = s.fit.map;
+      integer_map = true;
+    });
+
+  // 4. gridding: the simplified polycube has integer corners, so it is scaled by an integer
+  //    (its alignment is kept exactly); the unsimplified one by the scale nearest the target.
+  core::HexMesh hex;
+  run.stage("hexmesh", [&] {
+    mesh::GridOptions go;
+    if (integer_map) {
+      const double vol = polycube_volume(map);
+      go.scale = std::max(1.0, std::round(std::cbrt(o.target_hexes / std::max(vol, 1.0))));
+    } else {
+      go.target_hexes = o.target_hexes;
+    }
+    mesh::GridResult g = mesh::grid_polycube(map, go);
+    if (!g.snapping.ok())
+      throw core::GeometryError("snapping the polycube to the lattice broke it: " + g.snapping.summary());
+    r.grid_scale = g.scale;
+    r.hexes = static_cast<int>(g.hex_model.cells.size());
+    r.quads = static_cast<int>(g.quad_model.cells.size());
+    const quality::ScaledJacobianSummary sj = quality::scaled_jacobian(g.hex_model);
+    r.inverted_gridded = sj.inverted + sj.invalid;
+    r.msj_gridded = sj.min;
+    r.asj_gridded = sj.average;
+    io::write_mesh(out_dir / "hex.mesh", core::to_mesh_data(g.hex_model));
+    wrote(out_dir / "hex.mesh");
+    quality::ReportOptions qo;
+    qo.structure = true;
+    qo.target = &in.target;
+    const quality::QuadReport qr = quality::quad_report(g.quad_model, qo);
+    write_vtk(out_dir / "quad.vtk", core::to_mesh_data(g.quad_model), qr.fields());
+    wrote(out_dir / "quad.vtk");
+    hex = std::move(g.hex_model);
+  });
+
+  // 5. optimization (hex mesh untangling and quality improvement)
+  if (o.optimize)
+    run.stage("optimize", [&] {
+      throw core::GeometryError("hex-mesh optimization is not available in this build");
+    });
+
+  // 6. quality of the final hex mesh
+  run.stage("quality", [&] {
+    quality::ReportOptions qo;
+    qo.target = &in.target;
+    const quality::HexReport h = quality::hex_report(hex, qo);
+    r.msj = h.sj.min;
+    r.asj = h.sj.average;
+    r.inverted = h.sj.inverted;
+    if (h.domains) r.final_domains = h.domains->domains;
+    if (h.distance) r.hausdorff_relative = h.distance->relative;
+    write_vtk(out_dir / "hex_quality.vtk", core::to_mesh_data(hex), h.fields());
+    wrote(out_dir / "hex_quality.vtk");
+    if (r.inverted > 0)
+      throw core::GeometryError(fmt::format("the final hex mesh has {} inverted hexes", r.inverted));
+  });
+
+  r.total_seconds = std::chrono::duration<double>(Clock::now() - t_start).count();
+  return r;
+}
+
+}  // namespace polycube::pipeline

@@ -1,0 +1,85 @@
+#pragma once
+//! \file pipeline.h
+//! \brief The whole chain as one call (`polycube run`, issue "end to end"): construct a
+//! certified polycube map, simplify it (corner alignment), grid it into a hex mesh and a quad
+//! surface mesh, optimize the hex mesh, measure. Every intermediate result is written to the
+//! output folder as soon as its stage ends, so a failure keeps what earlier stages produced.
+//!
+//! Output folder:
+//!   construct/model.mesh, construct/polycube.mesh   the certified map (construct convention)
+//!   simplify/model.mesh, simplify/polycube.mesh     the simplified map (unless disabled)
+//!   hex.mesh                                        the gridded hex mesh (model space)
+//!   hex_optimized.mesh                              after optimization (unless disabled)
+//!   hex_quality.vtk                                 the final hex mesh, cell data
+//!                                                   scaled_jacobian and block_id (ParaView)
+//!   quad.vtk                                        the surface quad mesh, cell data
+//!                                                   scaled_jacobian and patch_id
+//! (report.json and the summary table are the caller's: see RunResult.)
+
+#include "construct/construct.h"
+#include "simplify/simplify.h"
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace polycube::pipeline {
+
+//! Options of run_pipeline().
+struct RunOptions {
+  construct::ConstructOptions construct;
+  bool simplify = true;                    //!< run the simplification (corner alignment)
+  simplify::SimplifyOptions simplify_options;
+  int target_hexes = 20000;                //!< about this many hexes (> 0)
+  bool optimize = true;                    //!< optimize the gridded hex mesh
+  //! Called when a stage starts: (1-based index, number of stages, name).
+  std::function<void(int, int, const std::string&)> on_stage;
+};
+
+//! One stage's record.
+struct StageRecord {
+  std::string name;
+  double seconds = 0.0;
+  bool ok = false;
+};
+
+//! What the chain did. When a stage failed, `failed_stage` names it, `failure` gives the
+//! reason, and the figures of the later stages keep their "not computed" values (-1).
+struct RunResult {
+  std::vector<StageRecord> stages;
+  std::string failed_stage;  //!< empty when every stage succeeded
+  std::string failure;       //!< the reason, one line
+  bool bad_input = false;    //!< the failure is the input's fault (exit code 2)
+  std::vector<std::string> files;  //!< files written, in order
+
+  // construct
+  int tets = -1, charts = -1, corners = -1;
+  double isometric_average = -1, isometric_max = -1;
+  // simplify (#D, #dom before/after; without simplification both are the map's own counts)
+  int hex_domains_before = -1, hex_domains_after = -1;
+  int quad_domains_before = -1, quad_domains_after = -1;
+  // hexmesh
+  double grid_scale = -1;
+  int hexes = -1, quads = -1;
+  int inverted_gridded = -1;           //!< hexes inverted in model space right after gridding
+  double msj_gridded = -2, asj_gridded = -2;
+  // optimize / final mesh
+  int iterations_optimize = -1;
+  double msj = -2, asj = -2;           //!< final hex mesh
+  int inverted = -1;                   //!< final hex mesh
+  int final_domains = -1;              //!< #D of the final hex mesh
+  double hausdorff_relative = -1;      //!< final boundary vs the input surface, / its bbox diagonal
+  double total_seconds = 0.0;
+
+  [[nodiscard]] bool ok() const { return failed_stage.empty(); }
+  [[nodiscard]] double seconds(const std::string& stage) const;  //!< 0 when not run
+};
+
+//! Run the chain on a surface or tet-mesh file, writing into out_dir (created).
+//! Never throws for a stage failure (see RunResult); throws core::InputError only when out_dir
+//! cannot be created.
+RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem::path& out_dir,
+                       const RunOptions& options);
+
+}  // namespace polycube::pipeline
