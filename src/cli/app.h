@@ -47,5 +47,6 @@ void register_structure(CLI::App& app);
 void register_hexmesh(CLI::App& app);
 void register_quadmesh(CLI::App& app);
 void register_simplify(CLI::App& app);
+void register_optimize(CLI::App& app);
 
 }  // namespace polycube::cli
