@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -45,9 +46,13 @@ std::vector<double> hex_sizes(const core::HexMesh& m) {
   return h;
 }
 
-//! The 8 corner tets of every hex with unit-cube-corner references of the hex's size.
+//! The 8 corner tets of every hex. The reference of a corner is the right-angled box corner
+//! with the input corner's three edge lengths (an ideal cube corner for a cubic hex): J = I
+//! exactly when the corner is orthogonal with its input edge lengths, so the energy raises the
+//! scaled Jacobian without fighting a mesh's grading or anisotropy.
+//! \param lengths #H*8 by 3 input edge lengths of each corner (zero ones replaced by the hex size)
 //! \param multiplier #H weight factors
-solve::TetElements corner_elements(const core::HexMesh& m, const std::vector<double>& size,
+solve::TetElements corner_elements(const core::HexMesh& m, const std::vector<std::array<double, 3>>& lengths,
                                    const std::vector<double>& multiplier) {
   solve::TetElements el;
   const std::size_t n = m.cells.size() * 8;
@@ -56,28 +61,47 @@ solve::TetElements corner_elements(const core::HexMesh& m, const std::vector<dou
   el.weights.reserve(n);
   for (std::size_t c = 0; c < m.cells.size(); ++c) {
     const auto& h = m.cells[c];
-    const double s = size[c];
-    Eigen::Matrix<double, 4, 3> G;
-    G << -1, -1, -1, 1, 0, 0, 0, 1, 0, 0, 0, 1;
-    G /= s;
     for (int i = 0; i < 8; ++i) {
       const auto& nb = core::kHexCornerNeighbors[i];
+      const auto& l = lengths[8 * c + i];
+      Eigen::Matrix<double, 4, 3> G = Eigen::Matrix<double, 4, 3>::Zero();
+      for (int d = 0; d < 3; ++d) {
+        G(d + 1, d) = 1.0 / l[d];
+        G(0, d) = -1.0 / l[d];
+      }
       el.tets.push_back({h[i], h[nb[0]], h[nb[1]], h[nb[2]]});
       el.gradients.push_back(G);
-      el.weights.push_back(multiplier[c] * s * s * s / 6.0);
+      el.weights.push_back(multiplier[c] * l[0] * l[1] * l[2] / 6.0);
     }
   }
   return el;
 }
 
+//! Input edge lengths of every hex corner (8 per hex, in kHexCornerNeighbors order).
+std::vector<std::array<double, 3>> corner_lengths(const core::HexMesh& m, const std::vector<double>& size) {
+  std::vector<std::array<double, 3>> out(m.cells.size() * 8);
+  for (std::size_t c = 0; c < m.cells.size(); ++c)
+    for (int i = 0; i < 8; ++i)
+      for (int d = 0; d < 3; ++d) {
+        const double l = (m.points[m.cells[c][core::kHexCornerNeighbors[i][d]]] - m.points[m.cells[c][i]]).norm();
+        out[8 * c + i][d] = l > 0.05 * size[c] ? l : size[c];  // collapsed edge: the hex size
+      }
+  return out;
+}
+
+int inverted_corners(const core::HexMesh& m, const core::Hex& h) {
+  int n = 0;
+  for (int i = 0; i < 8; ++i) {
+    const auto& nb = core::kHexCornerNeighbors[i];
+    const Vec3& p = m.points[h[i]];
+    n += !((m.points[h[nb[0]]] - p).dot((m.points[h[nb[1]]] - p).cross(m.points[h[nb[2]]] - p)) > 0);
+  }
+  return n;
+}
+
 int inverted_corners(const core::HexMesh& m) {
   int n = 0;
-  for (const auto& h : m.cells)
-    for (int i = 0; i < 8; ++i) {
-      const auto& nb = core::kHexCornerNeighbors[i];
-      const Vec3& p = m.points[h[i]];
-      n += !((m.points[h[nb[0]]] - p).dot((m.points[h[nb[1]]] - p).cross(m.points[h[nb[2]]] - p)) > 0);
-    }
+  for (const auto& h : m.cells) n += inverted_corners(m, h);
   return n;
 }
 
@@ -95,6 +119,35 @@ struct Problem {
   std::vector<solve::Attraction> attractions;
 
   //! Move every attraction target to the closest point of its surface or feature lines.
+  //! Put every attracted vertex exactly on its target, except where that would invert a
+  //! corner that was not inverted before (those vertices keep their position).
+  void snap(core::HexMesh& mesh) const {
+    std::vector<solve::Attraction> attr = attractions;
+    project(solve::flatten(mesh.points), attr);
+    const std::vector<Vec3> old = mesh.points;
+    std::vector<int> bad_before(mesh.cells.size());
+    for (std::size_t c = 0; c < mesh.cells.size(); ++c) bad_before[c] = inverted_corners(mesh, mesh.cells[c]);
+    std::vector<char> moved(mesh.points.size(), 0);
+    for (const auto& a : attr) {
+      mesh.points[a.vertex] = a.target;
+      moved[a.vertex] = 1;
+    }
+    // Revert the moves around hexes that got worse, until none does (each pass reverts some).
+    for (int pass = 0; pass < 20; ++pass) {
+      bool changed = false;
+      for (std::size_t c = 0; c < mesh.cells.size(); ++c) {
+        if (inverted_corners(mesh, mesh.cells[c]) <= bad_before[c]) continue;
+        for (int v : mesh.cells[c])
+          if (moved[v]) {
+            mesh.points[v] = old[v];
+            moved[v] = 0;
+            changed = true;
+          }
+      }
+      if (!changed) break;
+    }
+  }
+
   void project(const Eigen::VectorXd& x, std::vector<solve::Attraction>& attr) const {
     tbb::parallel_for(std::size_t{0}, attr.size(), [&](std::size_t k) {
       const Vec3 p = x.segment<3>(3 * static_cast<Eigen::Index>(attr[k].vertex));
@@ -188,6 +241,7 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   res.target_feature_edges = static_cast<int>(target.features().edges.size());
   res.target_corners = static_cast<int>(target.features().corners.size());
   const std::vector<double> size = hex_sizes(mesh);
+  const std::vector<std::array<double, 3>> lengths = corner_lengths(mesh, size);
   const Problem pb = make_problem(mesh, target, size, o);
   res.boundary_vertices = pb.roles.surface + pb.roles.feature;
   res.feature_vertices = pb.roles.feature;
@@ -208,8 +262,9 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
     uo.initial_epsilon = 1.0;
     uo.stop_when_untangled = true;
     uo.stall_iterations = 30;
-    const solve::UntangleResult r = run(pb, corner_elements(mesh, size, multiplier), mesh, uo, o);
+    const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o);
     add(res.untangle, r);
+    pb.snap(mesh);
     core::logger().info("optimize: untangling {} iterations, {} -> {} inverted corners", r.iterations,
                         r.inverted_before, r.inverted_after);
   }
@@ -241,8 +296,9 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
     uo.tolerance = 1e-4;
     uo.stall_iterations = 0;
     mesh.points = best_points;
-    const solve::UntangleResult r = run(pb, corner_elements(mesh, size, multiplier), mesh, uo, o);
+    const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o);
     add(res.quality, r);
+    pb.snap(mesh);
     const quality::ScaledJacobianSummary s = summary(mesh, true);
     const int inv = inverted_corners(mesh);
     const bool better = inv < best_inverted ||

@@ -5,8 +5,8 @@
 //!
 //! Every hex contributes its 8 corner tetrahedra (corner + its three neighbours,
 //! core::kHexCornerNeighbors), whose determinants are the corner Jacobians, to the elliptic
-//! energy of solve/untangle.h (Garanzha et al. 2021), each with an ideal cube corner of the
-//! hex's mean edge length as reference. Boundary vertices are attracted to the target:
+//! energy of solve/untangle.h (Garanzha et al. 2021), each with a right-angled (ideal cube)
+//! corner of the input corner's edge lengths as reference. Boundary vertices are attracted to the target:
 //! - corner vertices (junctions of the hex boundary's sharp-edge graph near a target corner)
 //!   are fixed at that corner;
 //! - feature vertices (on sharp hex boundary edges near a target feature line) are attracted to
@@ -45,7 +45,7 @@ struct OptimizeOptions {
   double feature_angle = 40.0;
   //! A hex boundary vertex is matched with a target feature line or corner only within this
   //! many local edge lengths.
-  double feature_distance = 1.0;
+  double feature_distance = 0.5;
   //! Newton systems with at most this many unknowns are solved by sparse Cholesky, larger ones
   //! by truncated conjugate gradients (a factorization grows too costly on large meshes).
   int cholesky_max_variables = 30000;
