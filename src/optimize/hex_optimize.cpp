@@ -120,8 +120,9 @@ struct Problem {
 
   //! Move every attraction target to the closest point of its surface or feature lines.
   //! Put every attracted vertex exactly on its target, except where that would invert a
-  //! corner that was not inverted before (those vertices keep their position).
-  void snap(core::HexMesh& mesh) const {
+  //! corner that was not inverted before or bring a hex's scaled Jacobian below `floor`
+  //! (the vertices of such hexes keep their position).
+  void snap(core::HexMesh& mesh, double floor) const {
     std::vector<solve::Attraction> attr = attractions;
     project(solve::flatten(mesh.points), attr);
     const std::vector<Vec3> old = mesh.points;
@@ -136,7 +137,16 @@ struct Problem {
     for (int pass = 0; pass < 20; ++pass) {
       bool changed = false;
       for (std::size_t c = 0; c < mesh.cells.size(); ++c) {
-        if (inverted_corners(mesh, mesh.cells[c]) <= bad_before[c]) continue;
+        const auto& h = mesh.cells[c];
+        if (inverted_corners(mesh, h) <= bad_before[c]) {
+          std::array<Vec3, 8> p;
+          bool touched = false;
+          for (int i = 0; i < 8; ++i) {
+            p[i] = mesh.points[h[i]];
+            touched = touched || moved[h[i]];
+          }
+          if (!touched || bad_before[c] > 0 || quality::hex_scaled_jacobian(p).value >= floor) continue;
+        }
         for (int v : mesh.cells[c])
           if (moved[v]) {
             mesh.points[v] = old[v];
@@ -264,7 +274,6 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
     uo.stall_iterations = 30;
     const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o);
     add(res.untangle, r);
-    pb.snap(mesh);
     core::logger().info("optimize: untangling {} iterations, {} -> {} inverted corners", r.iterations,
                         r.inverted_before, r.inverted_after);
   }
@@ -298,7 +307,6 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
     mesh.points = best_points;
     const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o);
     add(res.quality, r);
-    pb.snap(mesh);
     const quality::ScaledJacobianSummary s = summary(mesh, true);
     const int inv = inverted_corners(mesh);
     const bool better = inv < best_inverted ||
@@ -314,6 +322,9 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
     }
   }
   mesh.points = best_points;
+  // Finally put the boundary exactly on the target where that keeps every hex at or above the
+  // minimum reached (and inverts nothing).
+  pb.snap(mesh, best.min);
   res.quality.seconds = seconds_since(t2);
 
   res.after = summary(mesh, false);
