@@ -47,6 +47,7 @@ void register_structure(CLI::App& app);
 void register_hexmesh(CLI::App& app);
 void register_quadmesh(CLI::App& app);
 void register_simplify(CLI::App& app);
+void register_optimize(CLI::App& app);
 void register_run(CLI::App& app);
 
 }  // namespace polycube::cli

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   register_hexmesh(app);
   register_quadmesh(app);
   register_simplify(app);
+  register_optimize(app);
   register_run(app);
 
   app.parse_complete_callback(setup_logging_and_progress);

@@ -7,6 +7,8 @@
 #include "io/mesh_io.h"
 #include "io/polycube_map_io.h"
 #include "mesh/grid.h"
+#include "optimize/foldover_check.h"
+#include "optimize/hex_optimize.h"
 #include "pipeline/input.h"
 #include "quality/report.h"
 #include "quality/scaled_jacobian.h"
@@ -183,7 +185,16 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   // 5. optimization (hex mesh untangling and quality improvement)
   if (o.optimize)
     run.stage("optimize", [&] {
-      throw core::GeometryError("hex-mesh optimization is not available in this build");
+      const optimize::OptimizeResult opt = optimize::optimize_hex_mesh(hex, in.target, o.optimize_options);
+      r.iterations_optimize = opt.untangle.iterations + opt.quality.iterations;
+      const optimize::FoldoverReport fold = optimize::check_foldover(hex);
+      if (!fold.ok())
+        throw core::GeometryError(fmt::format(
+            "the optimized hex mesh fails the global fold-over check: {} inverted hexes, {} with a non-positive "
+            "scaled Jacobian, {} boundary self-intersections",
+            fold.inverted_hexes, fold.nonpositive_scaled_jacobian, fold.boundary_self_intersections));
+      io::write_mesh(out_dir / "hex_optimized.mesh", core::to_mesh_data(hex));
+      wrote(out_dir / "hex_optimized.mesh");
     });
 
   // 6. quality of the final hex mesh

@@ -17,6 +17,7 @@
 //! (report.json and the summary table are the caller's: see RunResult.)
 
 #include "construct/construct.h"
+#include "optimize/hex_optimize.h"
 #include "simplify/simplify.h"
 
 #include <filesystem>
@@ -33,6 +34,7 @@ struct RunOptions {
   simplify::SimplifyOptions simplify_options;
   int target_hexes = 20000;                //!< about this many hexes (> 0)
   bool optimize = true;                    //!< optimize the gridded hex mesh
+  optimize::OptimizeOptions optimize_options;
   //! Called when a stage starts: (1-based index, number of stages, name).
   std::function<void(int, int, const std::string&)> on_stage;
 };

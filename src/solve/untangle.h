@@ -30,6 +30,7 @@
 #include <Eigen/SparseCore>
 
 #include <array>
+#include <functional>
 #include <vector>
 
 namespace polycube::solve {
@@ -86,6 +87,12 @@ struct Attraction {
   double weight = 0.0;  //!< ω, in energy per squared length (elements' energy ~ weight ~ volume)
 };
 
+//! How untangle() solves each Newton system.
+enum class NewtonSolver {
+  Cholesky,           //!< sparse Cholesky (CHOLMOD): exact Newton steps
+  ConjugateGradient,  //!< truncated Newton: a few Jacobi-preconditioned CG iterations (large meshes)
+};
+
 //! Options of untangle().
 struct UntangleOptions {
   int max_iterations = 200;       //!< outer iterations (each ends with an ε update)
@@ -109,6 +116,14 @@ struct UntangleOptions {
   //! decreased nor the min det rose by 2% of its magnitude (0 = never).
   int stall_iterations = 20;
   std::vector<Attraction> attractions;  //!< optional extra quadratic terms
+  NewtonSolver linear_solver = NewtonSolver::Cholesky;  //!< Newton system solver
+  int cg_iterations = 100;     //!< ConjugateGradient: iterations per Newton step at most
+  double cg_tolerance = 1e-3;  //!< ConjugateGradient: relative residual to stop at
+  //! Optional hook called after every outer iteration with the iteration index, the current
+  //! coordinates x (3#V) and the attractions; it may change their targets and weights (not
+  //! their vertices), e.g. to re-project vertices onto a surface. Return false to stop.
+  std::function<bool(int iteration, const Eigen::VectorXd& x, std::vector<Attraction>& attractions)>
+      on_iteration;
 };
 
 //! Result of untangle().

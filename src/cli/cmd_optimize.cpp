@@ -1,0 +1,164 @@
+//! `polycube optimize HEX --target SURFACE -o OUT`: untangle a hex mesh and raise its minimum
+//! scaled Jacobian with the boundary kept on the target and its sharp features (ARCHITECTURE
+//! §6.5), then check globally for fold-overs before writing.
+#include "cli/app.h"
+#include "core/errors.h"
+#include "core/log.h"
+#include "core/topology.h"
+#include "io/mesh_io.h"
+#include "optimize/foldover_check.h"
+#include "optimize/hex_optimize.h"
+#include "quality/surface_distance.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <memory>
+#include <string>
+
+namespace polycube::cli {
+
+namespace {
+
+struct OptimizeCliOptions {
+  std::string input;
+  std::string target;
+  std::string output;
+  std::string report;  //!< optional JSON report file
+  bool keep_failed = false;
+  bool no_features = false;
+  optimize::OptimizeOptions opt;
+};
+
+//! The target as triangles: a surface file's triangles (quads split), or a volume mesh's boundary.
+core::TriMesh read_target(const std::string& path) {
+  const core::MeshData d = io::read_mesh(path);
+  if (!d.triangles.empty() || !d.quads.empty()) return io::read_surface(path);
+  if (!d.hexes.empty()) return quality::triangulate(core::boundary(core::hexes_of(d)).surface);
+  if (!d.tets.empty()) return core::boundary(core::tets_of(d)).surface;
+  throw core::InputError(path + ": no surface or volume elements to use as target");
+}
+
+nlohmann::json sj_json(const quality::ScaledJacobianSummary& s) {
+  return {{"min", s.min}, {"average", s.average}, {"inverted", s.inverted}, {"invalid", s.invalid}};
+}
+
+nlohmann::json phase_json(const optimize::PhaseReport& p) {
+  return {{"iterations", p.iterations}, {"newton_steps", p.newton_steps}, {"seconds", p.seconds}};
+}
+
+void run_optimize(const OptimizeCliOptions& o) {
+  if (!io::is_volume_format(io::format_from_path(o.output)))
+    throw core::InputError("-o expects a volume mesh file (.mesh .vtk .msh), got " + o.output);
+  const core::MeshData d = io::read_mesh(o.input);
+  if (d.hexes.empty()) throw core::InputError(o.input + ": no hexahedra to optimize");
+  core::HexMesh mesh = core::hexes_of(d);
+  const core::TriMesh target = read_target(o.target);
+  optimize::OptimizeOptions opt = o.opt;
+  opt.features = !o.no_features;
+
+  const optimize::OptimizeResult r = optimize::optimize_hex_mesh(mesh, target, opt);
+  const auto tc = std::chrono::steady_clock::now();
+  const optimize::FoldoverReport check = optimize::check_foldover(mesh);
+  const double check_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tc).count();
+  const quality::SurfaceDistance dist = quality::hausdorff_distance(mesh, target);
+
+  nlohmann::json j;
+  j["input"] = o.input;
+  j["target"] = o.target;
+  j["hexes"] = mesh.num_cells();
+  j["before"] = sj_json(r.before);
+  j["after"] = sj_json(r.after);
+  j["hausdorff"] = {{"absolute", dist.hausdorff}, {"relative", dist.relative},
+                    {"upper_bound", dist.hausdorff_upper}, {"target_diagonal", dist.reference_diagonal}};
+  j["vertices"] = {{"surface", r.boundary_vertices - r.feature_vertices}, {"feature", r.feature_vertices},
+                   {"corner", r.corner_vertices}};
+  j["target_features"] = {{"sharp_edges", r.target_feature_edges}, {"corners", r.target_corners}};
+  j["untangle"] = phase_json(r.untangle);
+  j["quality"] = phase_json(r.quality);
+  j["quality"]["rounds_kept"] = r.rounds_accepted;
+  j["setup_seconds"] = r.setup.seconds;
+  j["check"] = {{"ok", check.ok()},
+                {"reason", check.reason()},
+                {"inverted_hexes", check.inverted_hexes},
+                {"nonpositive_scaled_jacobian", check.nonpositive_scaled_jacobian},
+                {"boundary_self_intersections", check.boundary_self_intersections},
+                {"seconds", check_seconds}};
+  j["seconds"] = r.seconds + check_seconds;
+  std::string text = fmt::format("{}: {} hexes, target {}\n", o.input, mesh.num_cells(), o.target);
+  text += fmt::format("  {:<10}{:>10}{:>10}\n", "", "before", "after");
+  text += fmt::format("  {:<10}{:>10.4f}{:>10.4f}\n", "mSJ", r.before.min, r.after.min);
+  text += fmt::format("  {:<10}{:>10.4f}{:>10.4f}\n", "aSJ", r.before.average, r.after.average);
+  text += fmt::format("  {:<10}{:>10}{:>10}\n", "inverted", r.before.inverted + r.before.invalid,
+                      r.after.inverted + r.after.invalid);
+  text += fmt::format("  Hausdorff to the target {:.6g} ({:.4f}% of its bounding-box diagonal)\n", dist.hausdorff,
+                      100.0 * dist.relative);
+  text += fmt::format("  vertices: {} on the surface, {} on feature lines, {} at corners\n",
+                      r.boundary_vertices - r.feature_vertices, r.feature_vertices, r.corner_vertices);
+  text += fmt::format("  time: setup {:.2f} s, untangle {:.2f} s ({} it.), quality {:.2f} s ({} it.), check {:.2f} s\n",
+                      r.setup.seconds, r.untangle.seconds, r.untangle.iterations, r.quality.seconds,
+                      r.quality.iterations, check_seconds);
+  text += fmt::format("  fold-over check: {}\n", check.reason());
+
+  const bool write = check.ok() || o.keep_failed;
+  if (write) {
+    core::MeshData out = core::to_mesh_data(mesh);
+    io::write_mesh(o.output, out);
+    j["output"] = o.output;
+    text += fmt::format("wrote {}{}\n", o.output, check.ok() ? "" : " (failed the fold-over check: --keep-failed)");
+  }
+  if (!o.report.empty()) io::write_text_atomic(o.report, j.dump(2) + "\n");
+  print_result(j, text);
+  if (!check.ok()) throw core::GeometryError("optimized mesh fails the fold-over check: " + check.reason());
+}
+
+}  // namespace
+
+void register_optimize(CLI::App& app) {
+  auto opts = std::make_shared<OptimizeCliOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "optimize", "Untangle a hex mesh and raise its minimum scaled Jacobian, boundary kept on a target surface "
+                  "and its sharp features; refuses results that fold over");
+  sub->add_option("file", opts->input, "Hex mesh (.mesh .vtk .msh)")->required();
+  sub->add_option("--target", opts->target,
+                  "Target surface (.obj .off .ply .stl .mesh; a volume mesh stands for its boundary)")
+      ->required();
+  sub->add_option("-o,--output", opts->output, "Optimized hex mesh (.mesh .vtk .msh)")->required();
+  sub->add_option("--report", opts->report, "Also write the report as JSON to this file");
+  auto& oo = opts->opt;
+  sub->add_option("--surface-weight", oo.surface_weight, "Strength of the attraction of the boundary to the target")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  sub->add_option("--untangle-iterations", oo.untangle_iterations, "Outer iterations of the untangling at most")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  sub->add_option("--quality-rounds", oo.quality_rounds, "Quality rounds (each reweights the worst hexes)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  sub->add_option("--quality-iterations", oo.quality_iterations, "Outer iterations per quality round at most")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->add_option("--volume-weight", oo.volume_weight, "Weight of the volume term of the elliptic energy")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->add_option("--feature-angle", oo.feature_angle, "Dihedral angle (degrees) above which an edge is sharp")
+      ->check(CLI::Range(0.0, 180.0))
+      ->capture_default_str();
+  sub->add_option("--feature-distance", oo.feature_distance,
+                  "Match hex boundary vertices with target features within this many edge lengths")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->add_option("--cholesky-max-variables", oo.cholesky_max_variables,
+                  "Newton systems up to this size use sparse Cholesky, larger ones truncated CG")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  sub->add_option("--cg-iterations", oo.cg_iterations, "CG iterations per Newton step (large meshes)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->add_flag("--no-features", opts->no_features, "Do not preserve sharp features (surface attraction only)");
+  sub->add_flag("--keep-failed", opts->keep_failed,
+                "Write the result even when it fails the fold-over check (the exit code is still 3)");
+  sub->callback([opts] { run_optimize(*opts); });
+}
+
+}  // namespace polycube::cli

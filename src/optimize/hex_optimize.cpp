@@ -1,0 +1,337 @@
+//! Hex-mesh untangling and quality improvement with surface and feature attraction (see
+//! hex_optimize.h). The energy and Newton solver are solve::untangle's.
+#include "optimize/hex_optimize.h"
+
+#include "core/elements.h"
+#include "core/errors.h"
+#include "core/log.h"
+#include "core/topology.h"
+#include "optimize/features.h"
+#include "optimize/vertex_roles.h"
+#include "solve/untangle.h"
+
+#include <Eigen/Geometry>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace polycube::optimize {
+
+namespace {
+
+using core::Vec3;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+//! Mean edge length of each hex (the scale of its ideal-cube reference).
+std::vector<double> hex_sizes(const core::HexMesh& m) {
+  std::vector<double> h(m.cells.size());
+  double total = 0;
+  for (std::size_t c = 0; c < m.cells.size(); ++c) {
+    double len = 0;
+    for (const auto& e : core::kHexEdges) len += (m.points[m.cells[c][e[0]]] - m.points[m.cells[c][e[1]]]).norm();
+    h[c] = len / 12.0;
+    total += h[c];
+  }
+  const double mean = total / std::max<std::size_t>(1, h.size());
+  if (!(mean > 0) || !std::isfinite(mean)) throw core::InputError("hex mesh: every hex is degenerate");
+  for (double& x : h)
+    if (!(x > 1e-6 * mean)) x = mean;  // collapsed hex: use the mean size
+  return h;
+}
+
+//! The 8 corner tets of every hex. The reference of a corner is the right-angled box corner
+//! with the input corner's three edge lengths (an ideal cube corner for a cubic hex): J = I
+//! exactly when the corner is orthogonal with its input edge lengths, so the energy raises the
+//! scaled Jacobian without fighting a mesh's grading or anisotropy.
+//! \param lengths #H*8 by 3 input edge lengths of each corner (zero ones replaced by the hex size)
+//! \param multiplier #H weight factors
+solve::TetElements corner_elements(const core::HexMesh& m, const std::vector<std::array<double, 3>>& lengths,
+                                   const std::vector<double>& multiplier) {
+  solve::TetElements el;
+  const std::size_t n = m.cells.size() * 8;
+  el.tets.reserve(n);
+  el.gradients.reserve(n);
+  el.weights.reserve(n);
+  for (std::size_t c = 0; c < m.cells.size(); ++c) {
+    const auto& h = m.cells[c];
+    for (int i = 0; i < 8; ++i) {
+      const auto& nb = core::kHexCornerNeighbors[i];
+      const auto& l = lengths[8 * c + i];
+      Eigen::Matrix<double, 4, 3> G = Eigen::Matrix<double, 4, 3>::Zero();
+      for (int d = 0; d < 3; ++d) {
+        G(d + 1, d) = 1.0 / l[d];
+        G(0, d) = -1.0 / l[d];
+      }
+      el.tets.push_back({h[i], h[nb[0]], h[nb[1]], h[nb[2]]});
+      el.gradients.push_back(G);
+      el.weights.push_back(multiplier[c] * l[0] * l[1] * l[2] / 6.0);
+    }
+  }
+  return el;
+}
+
+//! Input edge lengths of every hex corner (8 per hex, in kHexCornerNeighbors order).
+std::vector<std::array<double, 3>> corner_lengths(const core::HexMesh& m, const std::vector<double>& size) {
+  std::vector<std::array<double, 3>> out(m.cells.size() * 8);
+  for (std::size_t c = 0; c < m.cells.size(); ++c)
+    for (int i = 0; i < 8; ++i)
+      for (int d = 0; d < 3; ++d) {
+        const double l = (m.points[m.cells[c][core::kHexCornerNeighbors[i][d]]] - m.points[m.cells[c][i]]).norm();
+        out[8 * c + i][d] = l > 0.05 * size[c] ? l : size[c];  // collapsed edge: the hex size
+      }
+  return out;
+}
+
+int inverted_corners(const core::HexMesh& m, const core::Hex& h) {
+  int n = 0;
+  for (int i = 0; i < 8; ++i) {
+    const auto& nb = core::kHexCornerNeighbors[i];
+    const Vec3& p = m.points[h[i]];
+    n += !((m.points[h[nb[0]]] - p).dot((m.points[h[nb[1]]] - p).cross(m.points[h[nb[2]]] - p)) > 0);
+  }
+  return n;
+}
+
+int inverted_corners(const core::HexMesh& m) {
+  int n = 0;
+  for (const auto& h : m.cells) n += inverted_corners(m, h);
+  return n;
+}
+
+quality::ScaledJacobianSummary summary(const core::HexMesh& m, bool keep_values) {
+  quality::ScaledJacobianOptions o;
+  o.keep_values = keep_values;
+  return quality::scaled_jacobian(m, o);
+}
+
+//! The optimization problem: reduction (corners fixed), attractions, re-projection.
+struct Problem {
+  const TargetSurface* target = nullptr;
+  VertexRoles roles;
+  solve::LinearReduction reduction;
+  std::vector<solve::Attraction> attractions;
+
+  //! Move every attraction target to the closest point of its surface or feature lines.
+  //! Put every attracted vertex exactly on its target, except where that would invert a
+  //! corner that was not inverted before or bring a hex's scaled Jacobian below `floor`
+  //! (the vertices of such hexes keep their position).
+  void snap(core::HexMesh& mesh, double floor) const {
+    std::vector<solve::Attraction> attr = attractions;
+    project(solve::flatten(mesh.points), attr);
+    const std::vector<Vec3> old = mesh.points;
+    std::vector<int> bad_before(mesh.cells.size());
+    for (std::size_t c = 0; c < mesh.cells.size(); ++c) bad_before[c] = inverted_corners(mesh, mesh.cells[c]);
+    std::vector<char> moved(mesh.points.size(), 0);
+    for (const auto& a : attr) {
+      mesh.points[a.vertex] = a.target;
+      moved[a.vertex] = 1;
+    }
+    // Revert the moves around hexes that got worse, until none does (each pass reverts some).
+    for (int pass = 0; pass < 20; ++pass) {
+      bool changed = false;
+      for (std::size_t c = 0; c < mesh.cells.size(); ++c) {
+        const auto& h = mesh.cells[c];
+        if (inverted_corners(mesh, h) <= bad_before[c]) {
+          std::array<Vec3, 8> p;
+          bool touched = false;
+          for (int i = 0; i < 8; ++i) {
+            p[i] = mesh.points[h[i]];
+            touched = touched || moved[h[i]];
+          }
+          if (!touched || bad_before[c] > 0 || quality::hex_scaled_jacobian(p).value >= floor) continue;
+        }
+        for (int v : mesh.cells[c])
+          if (moved[v]) {
+            mesh.points[v] = old[v];
+            moved[v] = 0;
+            changed = true;
+          }
+      }
+      if (!changed) break;
+    }
+  }
+
+  void project(const Eigen::VectorXd& x, std::vector<solve::Attraction>& attr) const {
+    tbb::parallel_for(std::size_t{0}, attr.size(), [&](std::size_t k) {
+      const Vec3 p = x.segment<3>(3 * static_cast<Eigen::Index>(attr[k].vertex));
+      attr[k].target = roles.role[attr[k].vertex] == VertexRole::Feature ? target->closest_feature_point(p)
+                                                                         : target->closest_point(p);
+    });
+  }
+};
+
+Problem make_problem(core::HexMesh& mesh, const TargetSurface& target, const std::vector<double>& size,
+                     const OptimizeOptions& o) {
+  Problem pb;
+  pb.target = &target;
+  pb.roles = classify_vertices(mesh, target, o.feature_angle, o.feature_distance);
+  const int nv = mesh.num_points();
+  // Corners take their target positions now and stay there.
+  for (int v = 0; v < nv; ++v)
+    if (pb.roles.role[v] == VertexRole::Corner) mesh.points[v] = target.corner_position(pb.roles.corner[v]);
+  std::vector<int> var(3 * static_cast<std::size_t>(nv), -1);
+  int nvar = 0;
+  for (int v = 0; v < nv; ++v)
+    if (pb.roles.role[v] != VertexRole::Corner)
+      for (int d = 0; d < 3; ++d) var[3 * v + d] = nvar++;
+  pb.reduction = solve::index_reduction(var, nvar, solve::flatten(mesh.points));
+  // Attraction weights: surface_weight * (reference volume around v) / h_v².
+  std::vector<double> volume(nv, 0.0);
+  for (std::size_t c = 0; c < mesh.cells.size(); ++c)
+    for (int v : mesh.cells[c]) volume[v] += size[c] * size[c] * size[c];
+  for (int v = 0; v < nv; ++v) {
+    const VertexRole r = pb.roles.role[v];
+    if (r != VertexRole::Surface && r != VertexRole::Feature) continue;
+    const double h = pb.roles.edge_length[v] > 0 ? pb.roles.edge_length[v] : 1.0;
+    pb.attractions.push_back({v, mesh.points[v], o.surface_weight * volume[v] / (h * h)});
+  }
+  pb.project(solve::flatten(mesh.points), pb.attractions);
+  return pb;
+}
+
+//! y of the reduction for the current points (corners excluded).
+Eigen::VectorXd variables_of(const Problem& pb, const core::HexMesh& mesh) {
+  Eigen::VectorXd y(pb.reduction.num_variables());
+  int k = 0;
+  for (int v = 0; v < mesh.num_points(); ++v)
+    if (pb.roles.role[v] != VertexRole::Corner)
+      for (int d = 0; d < 3; ++d) y[k++] = mesh.points[v][d];
+  return y;
+}
+
+solve::UntangleResult run(const Problem& pb, const solve::TetElements& el, core::HexMesh& mesh,
+                          solve::UntangleOptions uo, const OptimizeOptions& o) {
+  uo.attractions = pb.attractions;
+  if (pb.reduction.num_variables() > o.cholesky_max_variables) {
+    uo.linear_solver = solve::NewtonSolver::ConjugateGradient;
+    uo.cg_iterations = o.cg_iterations;
+  }
+  uo.on_iteration = [&pb](int, const Eigen::VectorXd& x, std::vector<solve::Attraction>& attr) {
+    pb.project(x, attr);
+    return true;
+  };
+  Eigen::VectorXd y = variables_of(pb, mesh);
+  const solve::UntangleResult r = solve::untangle(el, pb.reduction, y, uo);
+  mesh.points = solve::unflatten(pb.reduction.apply(y));
+  return r;
+}
+
+void add(PhaseReport& p, const solve::UntangleResult& r) {
+  p.iterations += r.iterations;
+  p.newton_steps += r.newton_steps;
+}
+
+}  // namespace
+
+OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& target_mesh, const OptimizeOptions& o) {
+  const auto t0 = Clock::now();
+  if (mesh.cells.empty()) throw core::InputError("hex mesh: no hexahedra");
+  if (!(o.surface_weight >= 0) || o.untangle_iterations < 0 || o.quality_rounds < 0 || o.quality_iterations < 1 ||
+      !(o.volume_weight > 0) || !(o.feature_angle > 0 && o.feature_angle < 180) || !(o.feature_distance > 0))
+    throw core::InputError("optimize: option out of range");
+  core::check_indices(mesh);
+  for (const Vec3& p : mesh.points)
+    if (!p.allFinite()) throw core::InputError("hex mesh: non-finite coordinate");
+
+  OptimizeResult res;
+  res.before = summary(mesh, false);
+  res.inverted_corners_before = inverted_corners(mesh);
+
+  // Setup: target, features, roles, reduction, attractions.
+  SurfaceFeatures features;
+  if (o.features) features = detect_features(target_mesh, o.feature_angle);
+  const TargetSurface target(target_mesh, std::move(features));
+  res.target_feature_edges = static_cast<int>(target.features().edges.size());
+  res.target_corners = static_cast<int>(target.features().corners.size());
+  const std::vector<double> size = hex_sizes(mesh);
+  const std::vector<std::array<double, 3>> lengths = corner_lengths(mesh, size);
+  const Problem pb = make_problem(mesh, target, size, o);
+  res.boundary_vertices = pb.roles.surface + pb.roles.feature;
+  res.feature_vertices = pb.roles.feature;
+  res.corner_vertices = pb.roles.corners;
+  std::vector<double> multiplier(mesh.cells.size(), 1.0);
+  res.setup.seconds = seconds_since(t0);
+  core::logger().info("optimize: {} hexes, {} surface, {} feature, {} corner vertices; target {} sharp edges, {} corners",
+                      mesh.num_cells(), pb.roles.surface, pb.roles.feature, pb.roles.corners,
+                      res.target_feature_edges, res.target_corners);
+
+  // Phase 1: untangle (corners fixed at the target may have folded elements too).
+  const auto t1 = Clock::now();
+  if (inverted_corners(mesh) > 0 && o.untangle_iterations > 0) {
+    solve::UntangleOptions uo;
+    uo.max_iterations = o.untangle_iterations;
+    uo.newton_steps = 2;
+    uo.volume_weight = o.volume_weight;
+    uo.initial_epsilon = 1.0;
+    uo.stop_when_untangled = true;
+    uo.stall_iterations = 30;
+    const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o);
+    add(res.untangle, r);
+    core::logger().info("optimize: untangling {} iterations, {} -> {} inverted corners", r.iterations,
+                        r.inverted_before, r.inverted_after);
+  }
+  res.untangle.seconds = seconds_since(t1);
+
+  // Phase 2: quality rounds, keeping the best state.
+  const auto t2 = Clock::now();
+  quality::ScaledJacobianSummary best = summary(mesh, true);
+  int best_inverted = inverted_corners(mesh);
+  // Keep the average: exactly when the input was valid; after untangling, within a small slack
+  // (the untangled state's average is not a quality the user asked to keep).
+  const double start_average = best.average - (res.untangle.iterations > 0 ? o.average_slack : 0.0);
+  std::vector<Vec3> best_points = mesh.points;
+  for (int round = 0; round < o.quality_rounds; ++round) {
+    // Heavier weights on the worst hexes (those within 0.1 of the minimum, at least 1%).
+    if (round > 0) {
+      std::vector<double> sorted = best.values;
+      const std::size_t k = std::min(sorted.size() - 1, sorted.size() / 100);
+      std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(k), sorted.end());
+      const double tau = std::max(sorted[k], best.min + 0.1);
+      for (std::size_t c = 0; c < multiplier.size(); ++c)
+        if (best.values[c] < tau) multiplier[c] *= 4.0;
+    }
+    solve::UntangleOptions uo;
+    uo.max_iterations = o.quality_iterations;
+    uo.newton_steps = 1;
+    uo.volume_weight = o.volume_weight;
+    uo.initial_epsilon = 1.0;  // only used while tangled; valid meshes start with a tiny ε
+    uo.tolerance = 1e-4;
+    uo.stall_iterations = 0;
+    mesh.points = best_points;
+    const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o);
+    add(res.quality, r);
+    const quality::ScaledJacobianSummary s = summary(mesh, true);
+    const int inv = inverted_corners(mesh);
+    const bool better = inv < best_inverted ||
+                        (inv == best_inverted && inv > 0 && s.min > best.min) ||
+                        (inv == 0 && best_inverted == 0 && s.min > best.min && s.average >= start_average);
+    core::logger().info("optimize: quality round {}: {} iterations, mSJ {:.4f} aSJ {:.4f} inverted corners {}{}",
+                        round, r.iterations, s.min, s.average, inv, better ? "" : " (not kept)");
+    if (better) {
+      best = s;
+      best_inverted = inv;
+      best_points = mesh.points;
+      ++res.rounds_accepted;
+    }
+  }
+  mesh.points = best_points;
+  // Finally put the boundary exactly on the target where that keeps every hex at or above the
+  // minimum reached (and inverts nothing).
+  pb.snap(mesh, best.min);
+  res.quality.seconds = seconds_since(t2);
+
+  res.after = summary(mesh, false);
+  res.inverted_corners_after = inverted_corners(mesh);
+  res.untangled = res.inverted_corners_after == 0;
+  res.seconds = seconds_since(t0);
+  return res;
+}
+
+}  // namespace polycube::optimize

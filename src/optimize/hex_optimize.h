@@ -1,0 +1,87 @@
+#pragma once
+//! \file hex_optimize.h
+//! \brief Hex-mesh optimization (ARCHITECTURE §6.5): untangling and quality improvement of a hex
+//! mesh whose boundary stays on a target surface and its sharp features.
+//!
+//! Every hex contributes its 8 corner tetrahedra (corner + its three neighbours,
+//! core::kHexCornerNeighbors), whose determinants are the corner Jacobians, to the elliptic
+//! energy of solve/untangle.h (Garanzha et al. 2021), each with a right-angled (ideal cube)
+//! corner of the input corner's edge lengths as reference. Boundary vertices are attracted to the target:
+//! - corner vertices (junctions of the hex boundary's sharp-edge graph near a target corner)
+//!   are fixed at that corner;
+//! - feature vertices (on sharp hex boundary edges near a target feature line) are attracted to
+//!   the closest point of the feature lines, so they slide along them;
+//! - other boundary vertices are attracted to the closest point of the target surface.
+//! Attraction targets are re-projected after every outer iteration (CGAL AABB trees).
+//!
+//! Phases: (1) untangling, when a corner is inverted, until none is; (2) quality rounds: the
+//! same energy with the barrier kept (no step may invert a corner) and, from round to round,
+//! larger weights on the hexes of lowest scaled Jacobian, to raise the minimum. A round is kept
+//! only when it raises the minimum scaled Jacobian without lowering the average below the one
+//! at the start of the phase (less OptimizeOptions::average_slack after untangling) (or, while tangled, when it leaves fewer inverted hexes).
+//! Deterministic: same input and options, same output bit for bit.
+
+#include "core/types.h"
+#include "quality/scaled_jacobian.h"
+
+namespace polycube::optimize {
+
+//! Options of optimize_hex_mesh().
+struct OptimizeOptions {
+  //! Strength of the attraction of boundary vertices to the target (dimensionless): a vertex at
+  //! distance d from its target costs surface_weight · (d/h)² times its hexes' reference
+  //! volume, h the local edge length. Larger keeps the boundary closer, smaller frees the shape.
+  double surface_weight = 100.0;
+  int untangle_iterations = 200;  //!< outer iterations of the untangling phase at most
+  int quality_rounds = 6;         //!< quality rounds (each reweights the worst hexes)
+  int quality_iterations = 15;    //!< outer iterations per quality round at most
+  //! After an untangling phase, quality rounds may lower the average scaled Jacobian by this
+  //! much (a valid input's average is never lowered).
+  double average_slack = 0.01;
+  double volume_weight = 1.0;     //!< λ of the elliptic energy (solve::UntangleOptions)
+  bool features = true;           //!< preserve the target's sharp edges and corners
+  //! A target edge is sharp when its faces' normals make an angle above this (degrees); the
+  //! same threshold classifies the hex mesh's boundary edges.
+  double feature_angle = 40.0;
+  //! A hex boundary vertex is matched with a target feature line or corner only within this
+  //! many local edge lengths.
+  double feature_distance = 0.5;
+  //! Newton systems with at most this many unknowns are solved by sparse Cholesky, larger ones
+  //! by truncated conjugate gradients (a factorization grows too costly on large meshes).
+  int cholesky_max_variables = 30000;
+  int cg_iterations = 100;  //!< CG iterations per Newton step (large meshes)
+};
+
+//! Work of one phase.
+struct PhaseReport {
+  int iterations = 0;    //!< outer iterations
+  int newton_steps = 0;  //!< Newton steps (sparse factorizations)
+  double seconds = 0;    //!< wall time
+};
+
+//! Result of optimize_hex_mesh().
+struct OptimizeResult {
+  quality::ScaledJacobianSummary before;  //!< scaled Jacobian of the input (no per-hex values)
+  quality::ScaledJacobianSummary after;   //!< ... of the result
+  int inverted_corners_before = 0;        //!< corner tets with det <= 0 at the start
+  int inverted_corners_after = 0;         //!< ... at the end
+  bool untangled = false;                 //!< no inverted corner at the end
+  int boundary_vertices = 0;              //!< attracted to the surface (features included)
+  int feature_vertices = 0;               //!< sliding on target feature lines
+  int corner_vertices = 0;                //!< fixed at target corners
+  int target_feature_edges = 0;           //!< sharp edges found on the target
+  int target_corners = 0;                 //!< corners found on the target
+  int rounds_accepted = 0;                //!< quality rounds kept
+  PhaseReport setup, untangle, quality;
+  double seconds = 0;  //!< total wall time
+};
+
+//! Untangle and optimize a hex mesh in place, its boundary kept on the target surface.
+//! \param mesh   #H hexes (orientation of core/elements.h); points are updated
+//! \param target closed triangle surface the boundary must follow
+//! \throw core::InputError on an empty mesh, out-of-range indices, a target without
+//!        non-degenerate triangles, or bad options
+//! \throw core::SolverError when the sparse factorization fails beyond repair
+OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& target, const OptimizeOptions& options = {});
+
+}  // namespace polycube::optimize
