@@ -15,20 +15,12 @@ echo "== box-cylinder sample (thesis fig. 4.2) -> $out/box-cylinder.obj"
 "$pc" info "$out/box-cylinder.obj"
 
 echo
-echo "== polycube labeling of the sample -> $out/label/"
-"$pc" label "$out/box-cylinder.obj" -o "$out/label" || echo "(labeling did not reach a valid result; see $out/label/report.json)"
-
-echo
-echo "== certified polycube map of the sample -> $out/construct/"
-if "$pc" construct "$out/box-cylinder.obj" -o "$out/construct"; then
+echo "== the whole chain: construct -> simplify -> hexmesh (+ quad mesh) -> optimize -> $out/run/"
+if "$pc" run "$out/box-cylinder.obj" -o "$out/run" --hexes 5000; then
   echo
-  echo "== hex mesh (about 5000 hexes) and surface quad mesh -> $out/hex.vtk, $out/quad.vtk"
-  "$pc" hexmesh "$out/construct/model.mesh" "$out/construct/polycube.mesh" -o "$out/hex.vtk" --hexes 5000 &&
-    "$pc" quadmesh "$out/construct/model.mesh" "$out/construct/polycube.mesh" -o "$out/quad.vtk" --hexes 5000 &&
-    "$pc" quality "$out/hex.vtk" --vtk "$out/hex_quality.vtk" ||
-    echo "(gridding stopped; see the message above)"
-  echo
-  echo "Open $out/hex_quality.vtk in ParaView (cell data: scaled_jacobian, block_id)."
+  echo "Open $out/run/hex_quality.vtk (cell data scaled_jacobian, block_id) and $out/run/quad.vtk in ParaView;"
+  echo "$out/run/hex_optimized.mesh opens in Gmsh. Every stage's result and report.json are in $out/run/."
 else
-  echo "(construction did not reach a certified map; see the message above)"
+  echo "(the chain stopped; the message above names the stage, $out/run/report.json has the details)"
+  exit 3
 fi

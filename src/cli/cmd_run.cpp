@@ -53,6 +53,7 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
       {"final", {{"inverted", r.inverted}, {"msj", r.msj}, {"asj", r.asj}, {"domains", r.final_domains},
                  {"hausdorff_relative", r.hausdorff_relative}}},
       {"total_seconds", r.total_seconds},
+      {"peak_memory_mib", r.peak_memory_mib},
       {"files", r.files}};
   if (!r.ok()) j["failure"] = {{"stage", r.failed_stage}, {"reason", r.failure}};
   return j;
@@ -83,7 +84,7 @@ std::string summary_table(const pipeline::RunResult& r) {
       what = "ok";
     t += fmt::format("| {} | {:.2f} | {} |\n", s.name, s.seconds, what);
   }
-  t += fmt::format("| total | {:.2f} | |\n", r.total_seconds);
+  t += fmt::format("| total | {:.2f} | peak memory {:.0f} MiB |\n", r.total_seconds, r.peak_memory_mib);
   return t;
 }
 

@@ -21,6 +21,8 @@
 #include <cmath>
 #include <optional>
 
+#include <sys/resource.h>
+
 namespace polycube::pipeline {
 
 namespace {
@@ -131,7 +133,19 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   bool integer_map = false;
   if (o.simplify)
     run.stage("simplify", [&] {
-      const simplify::SimplifyResult s = simplify::simplify_map(map, o.simplify_options);
+      // The lattice of the simplification is the coarsest hex mesh: when the target asks for
+      // fewer hexes than its default resolution gives, make it coarser (gridding then scales
+      // by an integer, so it can only refine).
+      simplify::SimplifyOptions so = o.simplify_options;
+      if (so.align.scale <= 0.0) {
+        const double longest = core::bounding_box(map.polycube).extent().maxCoeff();
+        const double vol = polycube_volume(map);
+        if (longest > 0.0 && vol > 0.0) {
+          const double res = longest * std::cbrt(o.target_hexes / vol);
+          so.align.auto_resolution = std::clamp(std::round(res), 4.0, so.align.auto_resolution);
+        }
+      }
+      const simplify::SimplifyResult s = simplify::simplify_map(map, so);
       r.hex_domains_before = s.before.hex_domains;
       r.hex_domains_after = s.after.hex_domains;
       r.quad_domains_before = s.before.quad_domains;
@@ -214,6 +228,8 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   });
 
   r.total_seconds = std::chrono::duration<double>(Clock::now() - t_start).count();
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) == 0) r.peak_memory_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;
   return r;
 }
 

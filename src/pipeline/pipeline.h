@@ -73,6 +73,7 @@ struct RunResult {
   int final_domains = -1;              //!< #D of the final hex mesh
   double hausdorff_relative = -1;      //!< final boundary vs the input surface, / its bbox diagonal
   double total_seconds = 0.0;
+  double peak_memory_mib = -1;         //!< peak resident memory of the process (getrusage)
 
   [[nodiscard]] bool ok() const { return failed_stage.empty(); }
   [[nodiscard]] double seconds(const std::string& stage) const;  //!< 0 when not run

@@ -1,6 +1,7 @@
 #include "simplify/fit.h"
 
 #include "core/errors.h"
+#include "core/topology.h"
 #include "solve/untangle.h"
 #include "structure/validate.h"
 
@@ -185,21 +186,66 @@ FitResult fit_polycube(const core::PolycubeMap& map, const structure::PolycubeSt
   // untangle the free coordinates
   const auto t_unt = Clock::now();
   if (options.untangle) {
-    std::vector<int> var(static_cast<std::size_t>(3 * nv), -1);
-    Eigen::VectorXd fixed_value(3 * nv);
+    // Ghost tets, one per boundary triangle: the triangle and a ghost vertex at height h above
+    // its chart plane (that coordinate fixed, the two others free). A ghost tet is positive
+    // exactly when its triangle faces its chart's direction, so the barrier also keeps the
+    // boundary from folding over itself where every real tet is positive (such a fold would
+    // split a chart and change the structure).
+    const core::TetBoundary bnd = core::boundary(map.polycube_mesh());
+    const auto nb = static_cast<int>(bnd.surface.cells.size());
+    std::vector<core::Tri> btris(static_cast<std::size_t>(nb));
+    std::vector<int> baxis(static_cast<std::size_t>(nb));
+    std::vector<double> bsign(static_cast<std::size_t>(nb));
+    double edge_sum = 0.0;
+    for (int f = 0; f < nb; ++f) {
+      for (int k = 0; k < 3; ++k) btris[f][k] = bnd.vertex_map[bnd.surface.cells[f][k]];
+      const auto& t = btris[f];
+      const Vec3 n = (map.polycube[t[1]] - map.polycube[t[0]]).cross(map.polycube[t[2]] - map.polycube[t[0]]);
+      int a = 0;
+      n.cwiseAbs().maxCoeff(&a);
+      baxis[f] = a;
+      bsign[f] = n[a] > 0 ? 1.0 : -1.0;
+      for (int k = 0; k < 3; ++k) edge_sum += (map.polycube[t[(k + 1) % 3]] - map.polycube[t[k]]).norm();
+    }
+    const double h_ref = nb > 0 ? 0.5 * edge_sum / (3.0 * nb) : 0.0;  // input polycube units
+    const int np = nv + nb;
+    std::vector<int> var(static_cast<std::size_t>(3 * np), -1);
+    Eigen::VectorXd fixed_value(3 * np);
     int nvar = 0;
     for (int v = 0; v < nv; ++v)
       for (int a = 0; a < 3; ++a) {
         fixed_value[3 * v + a] = pos[v][a];
         if (!fixed[v][a]) var[3 * v + a] = nvar++;
       }
+    std::vector<Vec3> ref_points = map.polycube;
+    std::vector<std::array<int, 4>> tets(map.tets.begin(), map.tets.end());
+    Eigen::VectorXd y_ghost(2 * nb);
+    int ng = 0;
+    for (int f = 0; f < nb; ++f) {
+      const auto& t = btris[f];
+      const int a = baxis[f];
+      const Vec3 c_ref = (map.polycube[t[0]] + map.polycube[t[1]] + map.polycube[t[2]]) / 3.0;
+      Vec3 up = Vec3::Zero();
+      up[a] = bsign[f];
+      ref_points.push_back(c_ref + h_ref * up);
+      tets.push_back({t[0], t[1], t[2], nv + f});
+      const Vec3 c = (pos[t[0]] + pos[t[1]] + pos[t[2]]) / 3.0;
+      for (int d = 0; d < 3; ++d) {
+        const int i = 3 * (nv + f) + d;
+        fixed_value[i] = d == a ? pos[t[0]][a] + bsign[f] * h_ref * scale : c[d];
+        if (d != a) {
+          var[i] = nvar++;
+          y_ghost[ng++] = c[d];
+        }
+      }
+    }
     const auto red = solve::index_reduction(var, nvar, fixed_value);
     Eigen::VectorXd y(nvar);
-    for (int v = 0; v < nv; ++v)
-      for (int a = 0; a < 3; ++a)
-        if (var[3 * v + a] >= 0) y[var[3 * v + a]] = pos[v][a];
-    std::vector<std::array<int, 4>> tets(map.tets.begin(), map.tets.end());
-    const auto elements = solve::reference_elements(map.polycube, tets, scale);
+    for (int i = 0; i < 3 * nv; ++i)
+      if (var[i] >= 0) y[var[i]] = pos[i / 3][i % 3];
+    for (int i = 3 * nv, k = 0; i < 3 * np; ++i)
+      if (var[i] >= 0) y[var[i]] = y_ghost[k++];
+    const auto elements = solve::reference_elements(ref_points, tets, scale);
     solve::UntangleOptions uo;
     uo.max_iterations = options.max_iterations;
     const auto ur = solve::untangle(elements, red, y, uo);

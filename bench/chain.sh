@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# The whole chain (`polycube run`) over every model of ../shared/data (surfaces and tet meshes)
+# and every built-in sample; prints one table (markdown) and writes it, with the machine, to
+# bench/RESULTS.md when --write is given.
+# Usage: bench/chain.sh [--write] [build-dir]   (env: HEXES=20000, TIME_LIMIT=60, OUT=out/bench)
+set -uo pipefail
+write=0
+if [[ "${1:-}" == "--write" ]]; then write=1; shift; fi
+build=${1:-build}
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/.." && pwd)
+data=${DATA:-$root/../shared/data}
+out=${OUT:-$root/out/bench}
+hexes=${HEXES:-20000}
+limit=${TIME_LIMIT:-60}
+if [[ "$build" = /* ]]; then pc=$build/polycube; else pc=$root/$build/polycube; fi
+[[ -x "$pc" ]] || { echo "bench/chain.sh: $pc not found; run make first" >&2; exit 2; }
+mkdir -p "$out"
+
+inputs=()
+for f in "$data"/surface/*.obj "$data"/tet/*.mesh; do [[ -f "$f" ]] && inputs+=("$f"); done
+for s in $("$pc" sample --list | awk '{print $1}'); do
+  "$pc" -q sample "$s" -o "$out/sample_$s.obj" && inputs+=("$out/sample_$s.obj")
+done
+
+for f in "${inputs[@]}"; do
+  kind=$(basename "$(dirname "$f")"); name=$(basename "${f%.*}")
+  [[ "$name" == sample_* ]] && { kind=sample; name=${name#sample_}; }
+  dir="$out/${kind}_$name"
+  rm -rf "$dir"
+  echo "== $kind/$name" >&2
+  "$pc" -q run "$f" -o "$dir" --hexes "$hexes" --time-limit "$limit" > /dev/null 2> "$dir.stderr"
+  echo "   exit $? ($(tail -c 300 "$dir.stderr" | tr '\n' ' '))" >&2
+done
+
+table=$(python3 - "$out" <<'PY'
+import json, os, sys, glob
+out = sys.argv[1]
+def f(v, spec):
+    return "-" if v is None or (isinstance(v, (int, float)) and v < -1.5) or v == -1 else format(v, spec)
+rows = []
+print("| model | #tets | #charts | #corners | #D before | #D after | #dom before | #dom after | #H | mSJ | aSJ | Hausdorff | construct s | simplify s | hexmesh s | optimize s | total s | peak MiB | result |")
+print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+for rep in sorted(glob.glob(os.path.join(out, "*", "report.json"))):
+    j = json.load(open(rep))
+    name = os.path.basename(os.path.dirname(rep)).replace("_", "/", 1)
+    st = {s["stage"]: s["seconds"] for s in j["stages"]}
+    fin = j["final"]
+    res = "ok" if j["ok"] else "failed at " + j["failure"]["stage"]
+    print("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |".format(
+        name, f(j["tets"], "d"), f(j["charts"], "d"), f(j["corners"], "d"),
+        f(j["hex_domains_before"], "d"), f(j["hex_domains_after"], "d"),
+        f(j["quad_domains_before"], "d"), f(j["quad_domains_after"], "d"), f(j["hexes"], "d"),
+        f(fin["msj"], ".3f"), f(fin["asj"], ".3f"), f(fin["hausdorff_relative"], ".4f"),
+        f(st.get("construct"), ".1f"), f(st.get("simplify"), ".1f"), f(st.get("hexmesh"), ".1f"),
+        f(st.get("optimize"), ".1f"), f(j["total_seconds"], ".1f"), f(j["peak_memory_mib"], ".0f"), res))
+PY
+)
+echo "$table"
+if [[ $write -eq 1 ]]; then
+  {
+    echo "# Benchmark: the whole chain (\`bench/chain.sh\`)"
+    echo
+    echo "Machine: $(nproc) cores, $(awk '/MemTotal/ {printf "%.0f GiB", $2/1048576}' /proc/meminfo), $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); $(uname -sr)."
+    echo "Date: $(date -u +%Y-%m-%d). Commit: $(git -C "$root" rev-parse --short HEAD). Options: \`polycube run --hexes $hexes --time-limit $limit\` (defaults otherwise)."
+    echo "Hausdorff: final hex boundary vs the input surface, relative to its bounding-box diagonal. mSJ/aSJ: after optimization."
+    echo
+    echo "$table"
+  } > "$here/RESULTS.md"
+  echo "wrote $here/RESULTS.md" >&2
+fi
