@@ -6,12 +6,15 @@
 #include "core/topology.h"
 #include "io/mesh_io.h"
 #include "samples/samples.h"
+#include "simplify/simplify.h"
+#include "structure/structure.h"
 
 #include "construct/certifier.h"
 #include "construct/validator.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 
 namespace polycube {
@@ -33,6 +36,28 @@ void expect_certified(const construct::ConstructResult& r, const std::string& wh
   EXPECT_GE(r.isometric_average, 1.0) << what;  // max(σ1, 1/σ3) >= 1 for every tet
 }
 
+//! Simplification (issue "polycube simplification") of a certified map: the output is certified by
+//! the independent certifier with the construction's boundary labels, keeps the structure
+//! (corners, edges, charts), has integer corners, and #D does not grow.
+void expect_simplified(const construct::ConstructResult& r, const std::string& what) {
+  const simplify::SimplifyResult s = simplify::simplify_map(r.map);
+  ASSERT_TRUE(s.fit.certified) << what << ": " << (s.fit.failures.empty() ? "" : s.fit.failures.front());
+  const auto& m = s.fit.map;
+  ASSERT_EQ(m.tets, r.map.tets) << what;
+  const test::Verdict v = test::independent_check(m.tets, m.model, m.polycube, r.boundary, r.labels);
+  EXPECT_TRUE(test::certified(v)) << what << ": bad polycube " << v.bad_polycube << ", off plane " << v.off_plane
+                                  << ", wrong facing " << v.wrong_facing;
+  const structure::PolycubeStructure before = structure::extract_structure(r.map);
+  const structure::PolycubeStructure after = structure::extract_structure(m);
+  EXPECT_EQ(after.corners.size(), before.corners.size()) << what;
+  EXPECT_EQ(after.edges.size(), before.edges.size()) << what;
+  EXPECT_EQ(after.charts.size(), before.charts.size()) << what;
+  for (const auto& c : after.corners)
+    for (int a = 0; a < 3; ++a) EXPECT_EQ(c.position[a], std::round(c.position[a])) << what;
+  EXPECT_LE(s.after.hex_domains, s.before.hex_domains) << what;
+  EXPECT_LE(s.after.quad_domains, s.before.quad_domains) << what;
+}
+
 void construct_file(const std::filesystem::path& path) {
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "missing " << path;
   construct::ConstructResult r;
@@ -44,6 +69,7 @@ void construct_file(const std::filesystem::path& path) {
     r = construct::construct_polycube(io::read_surface(path));
   }
   expect_certified(r, path.filename().string());
+  expect_simplified(r, path.filename().string());
 }
 
 TEST(ConstructModels, Torus) { construct_file(kData / "surface/torus.obj"); }
@@ -71,7 +97,9 @@ TEST(ConstructModels, DeterministicBitForBit) {
 
 class ConstructSample : public ::testing::TestWithParam<std::string> {};
 TEST_P(ConstructSample, IsCertified) {
-  expect_certified(construct::construct_polycube(samples::make_sample(GetParam())), GetParam());
+  const construct::ConstructResult r = construct::construct_polycube(samples::make_sample(GetParam()));
+  expect_certified(r, GetParam());
+  expect_simplified(r, GetParam());
 }
 INSTANTIATE_TEST_SUITE_P(Samples, ConstructSample, ::testing::Values("box-cylinder", "l-bracket", "flange", "ring"),
                          [](const auto& info) {
