@@ -287,6 +287,25 @@ ConstructResult construct_from_prepared(const core::TetMesh& mesh, const Constru
 ConstructResult construct_polycube(const core::TriMesh& surface, const ConstructOptions& o) {
   const auto t0 = Clock::now();
   TetrahedralizeResult tr = tetrahedralize(surface, o.tetrahedralize);
+  if (o.tetrahedralize.max_volume == 0.0 && o.min_tets > 0 && tr.mesh.num_cells() < o.min_tets) {
+    // Too coarse an interior leaves too little room to open a polycube corner where the
+    // model's surface is nearly flat (3holes: stuck tets at 7188 tets, certified at ~13500):
+    // bound the tet volume so that the volume alone asks for about min_tets tets.
+    double volume = 0.0;
+    for (const auto& c : tr.mesh.cells) {
+      const auto& p = tr.mesh.points;
+      volume += (p[c[1]] - p[c[0]]).dot((p[c[2]] - p[c[0]]).cross(p[c[3]] - p[c[0]])) / 6.0;
+    }
+    const core::Vec3 ext = core::bounding_box(surface.points).extent();
+    const double box = ext.x() * ext.y() * ext.z();
+    if (volume > 0.0 && box > 0.0) {
+      TetrahedralizeOptions finer = o.tetrahedralize;
+      finer.max_volume = 2.0 * volume / o.min_tets / box;
+      core::logger().info("construct: {} tets is below {}: tetrahedralize again with max volume {:.3g} of the box",
+                          tr.mesh.num_cells(), o.min_tets, finer.max_volume);
+      tr = tetrahedralize(surface, finer);
+    }
+  }
   const double t_tet = since(t0);
   ConstructResult res = construct_from_prepared(tr.mesh, o);
   res.tetgen_tets = tr.tetgen_tets;

@@ -43,6 +43,9 @@ struct ConstructOptions {
   int unfold_moves = 0;
   int relabel_ring = 2;             //!< vertex rings around the failures that are penalized
   double relabel_penalty = 1.0;     //!< added per round, in units of a 90° misfit
+  //! Surface inputs: when TetGen's mesh (without a volume bound) has fewer tets than this, the
+  //! surface is tetrahedralized again with a volume bound asking for about this many (0: never).
+  int min_tets = 10000;
   int max_attempts = 8;             //!< labeling + deformation runs in all, at most
   //! No new attempt starts after this many seconds (0: no limit; a running attempt finishes).
   double time_limit = 0;

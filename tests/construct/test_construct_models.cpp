@@ -79,6 +79,7 @@ TEST(ConstructModels, TetSphere) { construct_file(kData / "tet/sphere.mesh"); }
 TEST(ConstructModels, Fandisk) { construct_file(kData / "surface/fandisk.obj"); }
 TEST(ConstructModels, B0Surface) { construct_file(kData / "surface/B0.obj"); }
 TEST(ConstructModels, TetS3) { construct_file(kData / "tet/S3.mesh"); }
+TEST(ConstructModels, ThreeHoles) { construct_file(kData / "surface/3holes.obj"); }
 
 TEST(ConstructModels, DeterministicBitForBit) {
   const auto path = kData / "surface/torus.obj";
