@@ -77,9 +77,13 @@ int main(int argc, char** argv) {
     if (a == "--json") { json = true; continue; }
     if (a == "--no-fit") { fit = false; continue; }
     if (a == "--no-exterior-rule") { exterior = false; continue; }
-    const std::filesystem::path dir(a);
+    const std::filesystem::path dir = std::filesystem::path(a).lexically_normal();
+    // `polycube run` and `construct` folders: name the model by the folder above "construct".
+    std::string name = dir.filename().string();
+    if (name.empty()) name = dir.parent_path().filename().string();
+    if (name == "construct" || name == "simplify") name = dir.parent_path().filename().string();
     try {
-      models.push_back({dir.filename().string(), io::read_polycube_map(dir / "model.mesh", dir / "polycube.mesh"), 0.0});
+      models.push_back({name, io::read_polycube_map(dir / "model.mesh", dir / "polycube.mesh"), 0.0});
     } catch (const std::exception& e) {
       std::cerr << "skipping " << a << ": " << e.what() << "\n";
     }
