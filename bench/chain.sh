@@ -2,10 +2,20 @@
 # The whole chain (`polycube run`) over every model of ../shared/data (surfaces and tet meshes)
 # and every built-in sample; prints one table (markdown) and writes it, with the machine, to
 # bench/RESULTS.md when --write is given.
-# Usage: bench/chain.sh [--write] [build-dir]   (env: HEXES=20000, TIME_LIMIT=60, OUT=out/bench)
+# Usage: bench/chain.sh [--write] [--table-only] [build-dir]
+#   env: HEXES=20000, TIME_LIMIT=60, OUT=out/bench; --table-only rebuilds the table from OUT
+#   without running anything.
 set -uo pipefail
 write=0
-if [[ "${1:-}" == "--write" ]]; then write=1; shift; fi
+table_only=0
+while [[ "${1:-}" == --* ]]; do
+  case "$1" in
+    --write) write=1 ;;
+    --table-only) table_only=1 ;;
+    *) echo "bench/chain.sh: unknown option $1" >&2; exit 2 ;;
+  esac
+  shift
+done
 build=${1:-build}
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/.." && pwd)
@@ -18,12 +28,12 @@ if [[ "$build" = /* ]]; then pc=$build/polycube; else pc=$root/$build/polycube; 
 mkdir -p "$out"
 
 inputs=()
-for f in "$data"/surface/*.obj "$data"/tet/*.mesh; do [[ -f "$f" ]] && inputs+=("$f"); done
-for s in $("$pc" sample --list | awk '{print $1}'); do
+[[ $table_only -eq 1 ]] || for f in "$data"/surface/*.obj "$data"/tet/*.mesh; do [[ -f "$f" ]] && inputs+=("$f"); done
+[[ $table_only -eq 1 ]] || for s in $("$pc" sample --list | awk '{print $1}'); do
   "$pc" -q sample "$s" -o "$out/sample_$s.obj" && inputs+=("$out/sample_$s.obj")
 done
 
-for f in "${inputs[@]}"; do
+for f in "${inputs[@]+"${inputs[@]}"}"; do
   kind=$(basename "$(dirname "$f")"); name=$(basename "${f%.*}")
   [[ "$name" == sample_* ]] && { kind=sample; name=${name#sample_}; }
   dir="$out/${kind}_$name"
