@@ -5,6 +5,7 @@
 #include "quality/domains.h"
 #include "quality/scaled_jacobian.h"
 
+#include "cli/run_cli.h"
 #include "construct/shapes.h"
 
 #include <gtest/gtest.h>
@@ -23,10 +24,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
+using test::CliResult;
 
 std::string slurp(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);
@@ -43,17 +41,7 @@ fs::path temp_dir(const std::string& name) {
   return d;
 }
 
-CliRun run(const std::string& args, const fs::path& dir) {
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd = std::string("\"") + POLYCUBE_CLI + "\" run " + args + " > \"" + out.string() + "\" 2> \"" +
-                          err.string() + "\"";
-  const int status = std::system(cmd.c_str());
-  CliRun r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
+CliResult run(const std::string& args) { return test::run_cli("run " + args); }
 
 void write_surface(const fs::path& p, const core::TriMesh& m) {
   core::MeshData d;
@@ -67,22 +55,22 @@ class RunBox : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = temp_dir("box");
     write_surface(dir_ / "box.obj", test::make_box(1.0, 2.0, 1.5, 4));
-    result_ = run("\"" + (dir_ / "box.obj").string() + "\" -o \"" + (dir_ / "out").string() + "\" --hexes 3000", dir_);
+    result_ = run("\"" + (dir_ / "box.obj").string() + "\" -o \"" + (dir_ / "out").string() + "\" --hexes 3000");
   }
   static fs::path dir_;
-  static CliRun result_;
+  static CliResult result_;
 };
 fs::path RunBox::dir_;
-CliRun RunBox::result_;
+CliResult RunBox::result_;
 
 TEST_F(RunBox, EveryStageSucceedsAndTheSummaryNamesThem) {
-  ASSERT_EQ(result_.code, 0) << result_.err;
+  ASSERT_EQ(result_.exit_code, 0) << result_.err;
   for (const char* stage : {"construct", "simplify", "hexmesh", "optimize", "quality", "total"})
     EXPECT_NE(result_.out.find(std::string("| ") + stage + " |"), std::string::npos) << result_.out;
 }
 
 TEST_F(RunBox, OutputsAreReReadableAndMatchTheReport) {
-  ASSERT_EQ(result_.code, 0) << result_.err;
+  ASSERT_EQ(result_.exit_code, 0) << result_.err;
   const fs::path out = dir_ / "out";
   const auto j = nlohmann::json::parse(slurp(out / "report.json"));
   EXPECT_TRUE(j["ok"].get<bool>());
@@ -111,12 +99,11 @@ TEST_F(RunBox, OutputsAreReReadableAndMatchTheReport) {
 }
 
 TEST_F(RunBox, SameInputSameOutput) {
-  ASSERT_EQ(result_.code, 0) << result_.err;
+  ASSERT_EQ(result_.exit_code, 0) << result_.err;
   const fs::path again = dir_ / "again";
   fs::create_directories(again);
-  const CliRun r = run("\"" + (dir_ / "box.obj").string() + "\" -o \"" + (again / "out").string() + "\" --hexes 3000",
-                       again);
-  ASSERT_EQ(r.code, 0) << r.err;
+  const CliResult r = run("\"" + (dir_ / "box.obj").string() + "\" -o \"" + (again / "out").string() + "\" --hexes 3000");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(slurp(dir_ / "out" / "hex_optimized.mesh"), slurp(again / "out" / "hex_optimized.mesh"));
   EXPECT_EQ(slurp(dir_ / "out" / "simplify" / "polycube.mesh"), slurp(again / "out" / "simplify" / "polycube.mesh"));
 }
@@ -126,8 +113,8 @@ TEST(RunCli, OpenSurfaceStopsWithExitTwoBeforeAnyHeavyWork) {
   auto m = test::make_box(1.0, 1.0, 1.0, 2);
   m.cells.pop_back();
   write_surface(dir / "open.obj", m);
-  const CliRun r = run("\"" + (dir / "open.obj").string() + "\" -o \"" + (dir / "out").string() + "\"", dir);
-  EXPECT_EQ(r.code, 2);
+  const CliResult r = run("\"" + (dir / "open.obj").string() + "\" -o \"" + (dir / "out").string() + "\"");
+  EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("stage input failed"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("open"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "out" / "construct"));
@@ -145,8 +132,8 @@ TEST(RunCli, NonManifoldSurfaceStopsWithExitTwo) {
   m.cells.push_back({a, b, c});
   m.cells.push_back({b, a, c});
   write_surface(dir / "fin.obj", m);
-  const CliRun r = run("\"" + (dir / "fin.obj").string() + "\" -o \"" + (dir / "out").string() + "\"", dir);
-  EXPECT_EQ(r.code, 2);
+  const CliResult r = run("\"" + (dir / "fin.obj").string() + "\" -o \"" + (dir / "out").string() + "\"");
+  EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("manifold"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "out" / "construct"));
 }
@@ -156,10 +143,9 @@ TEST(RunCli, AFailingStageIsNamedAndEarlierResultsAreKept) {
   // construction and simplification results must stay, the stage must be named.
   const fs::path dir = temp_dir("fail");
   write_surface(dir / "box.obj", test::make_box(1.0, 1.0, 1.0, 2));
-  const CliRun r = run("\"" + (dir / "box.obj").string() + "\" -o \"" + (dir / "out").string() +
-                           "\" --no-simplify --hexes 2000000000",
-                       dir);
-  EXPECT_NE(r.code, 0);
+  const CliResult r = run("\"" + (dir / "box.obj").string() + "\" -o \"" + (dir / "out").string() +
+                           "\" --no-simplify --hexes 2000000000");
+  EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("stage hexmesh failed"), std::string::npos) << r.err;
   EXPECT_TRUE(fs::exists(dir / "out" / "construct" / "polycube.mesh"));
   EXPECT_FALSE(fs::exists(dir / "out" / "hex.mesh"));
