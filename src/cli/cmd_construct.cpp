@@ -87,6 +87,10 @@ void run_construct(const ConstructCliOptions& o) {
       {"boundaries", r.boundaries},
       {"fidelity", r.fidelity},
       {"repair_moves", r.repair_moves},
+      {"predeform",
+       {{"iterations", r.predeform.iterations},
+        {"misalignment_before", r.predeform.misalignment_before},
+        {"misalignment_after", r.predeform.misalignment_after}}},
       {"inverted_after_linear_step", r.inverted_after_linear},
       {"untangle",
        {{"iterations", r.untangle.iterations},
@@ -102,6 +106,7 @@ void run_construct(const ConstructCliOptions& o) {
         {"volume_normalized", true}}},
       {"seconds",
        {{"tetrahedralize", s.tetrahedralize},
+        {"predeform", s.predeform},
         {"label", s.label},
         {"repair", s.repair},
         {"deform", s.deform},
@@ -118,11 +123,11 @@ void run_construct(const ConstructCliOptions& o) {
   const std::string text = fmt::format(
       "{}: certified polycube map, {} tets, {} charts, {} corners, fidelity {:.4f}\n"
       "isometric distortion avg {:.3f} max {:.3f}\n"
-      "time: tetrahedralize {:.2f} s, label {:.2f} s, repair {:.2f} s, deform {:.2f} s, untangle {:.2f} s, "
+      "time: tetrahedralize {:.2f} s, predeform {:.2f} s, label {:.2f} s, repair {:.2f} s, deform {:.2f} s, untangle {:.2f} s, "
       "certify {:.2f} s, total {:.2f} s\n"
       "wrote {}",
       o.input, r.map.num_tets(), r.charts, r.corners, r.fidelity, r.isometric_average, r.isometric_max,
-      s.tetrahedralize, s.label, s.repair, s.deform, s.untangle, s.certify, s.total, dir.string());
+      s.tetrahedralize, s.predeform, s.label, s.repair, s.deform, s.untangle, s.certify, s.total, dir.string());
   print_result(j, text);
 }
 
@@ -150,6 +155,15 @@ void register_construct(CLI::App& app) {
                   "Compactness vs fidelity trade-off of the labeling (larger: fewer, smoother charts)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  sub->add_option("--predeform", c.predeform.iterations,
+                  "Iterations of the normal-driven pre-deformation before the labeling (0: label the model's own "
+                  "normals)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--predeform-weight", c.predeform.surface_weight,
+                  "Weight of the normal alignment against rigidity in the pre-deformation")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   sub->add_option("--iterations", c.deform.max_iterations, "Outer iterations of the untangling/optimization")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);

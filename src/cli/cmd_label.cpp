@@ -6,6 +6,7 @@
 #include "construct/labeling_check.h"
 #include "construct/labeling_repair.h"
 #include "construct/polycube_estimate.h"
+#include "construct/predeform.h"
 #include "construct/tetrahedralize.h"
 #include "core/errors.h"
 #include "core/log.h"
@@ -27,6 +28,7 @@ struct LabelOptions {
   std::string output_dir;
   construct::TetrahedralizeOptions tet;
   construct::LabelingOptions labeling;
+  construct::PredeformOptions predeform;
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -83,12 +85,28 @@ void run_label(const LabelOptions& o) {
   }
   const double t_tet = seconds_since(t0);
 
-  // 2. Boundary, labeling, repair.
+  // 2. Boundary, pre-deformation (optional), labeling, repair. With a pre-deformation the
+  //    fidelity term reads the normals of the pre-deformed surface, as construct does.
   const core::TetBoundary bnd = core::boundary(mesh);
+  construct::LabelingOptions labeling = o.labeling;
   const auto t1 = std::chrono::steady_clock::now();
-  const construct::LabelingResult lab = construct::graph_cut_labeling(bnd.surface, o.labeling);
+  construct::PredeformResult pre;
+  if (o.predeform.iterations > 0) {
+    std::vector<core::Tri> tris;
+    tris.reserve(bnd.surface.cells.size());
+    for (const auto& t : bnd.surface.cells)
+      tris.push_back({bnd.vertex_map[t[0]], bnd.vertex_map[t[1]], bnd.vertex_map[t[2]]});
+    pre = construct::predeform(mesh, tris, o.predeform);
+    labeling.data_normals.resize(tris.size());
+    for (std::size_t f = 0; f < tris.size(); ++f) {
+      const auto& t = tris[f];
+      labeling.data_normals[f] =
+          (pre.points[t[1]] - pre.points[t[0]]).cross(pre.points[t[2]] - pre.points[t[0]]).normalized();
+    }
+  }
+  const construct::LabelingResult lab = construct::graph_cut_labeling(bnd.surface, labeling);
   construct::RepairOptions ropt;
-  ropt.energy = o.labeling;
+  ropt.energy = labeling;
   const construct::RepairResult rep = construct::repair_labeling(bnd.surface, lab.labels, ropt);
   const double t_label = seconds_since(t1);
   const double fidelity = construct::labeling_fidelity(bnd.surface, rep.labels);
@@ -108,6 +126,10 @@ void run_label(const LabelOptions& o) {
     out.triangles.push_back({bnd.vertex_map[t[0]], bnd.vertex_map[t[1]], bnd.vertex_map[t[2]]});
   out.triangle_labels = rep.labels;
   io::write_mesh(dir / "tets.mesh", out);
+  if (o.predeform.iterations > 0) {
+    out.points = pre.points;
+    io::write_mesh(dir / "predeformed.mesh", out);
+  }
   std::string text_labels;
   text_labels.reserve(rep.labels.size() * 2);
   for (const int l : rep.labels) {
@@ -140,6 +162,12 @@ void run_label(const LabelOptions& o) {
                         {"folded_area_fraction", est.flipped_area},
                         {"edge_distortion", est.edge_distortion}}},
                       {"defects", defects},
+                      {"predeform",
+                       {{"iterations", pre.iterations},
+                        {"misalignment_before", pre.misalignment_before},
+                        {"misalignment_after", pre.misalignment_after},
+                        {"inverted_tets", pre.inverted},
+                        {"seconds", pre.seconds}}},
                       {"seconds", {{"tetrahedralize", t_tet}, {"label_and_repair", t_label}}},
                       {"outputs", {{"mesh", (dir / "tets.mesh").string()},
                                    {"labeling", (dir / "labeling.txt").string()},
@@ -175,7 +203,8 @@ void register_label(CLI::App& app) {
       "label", "Tetrahedralize a closed surface (or take a tet mesh) and compute a valid polycube labeling");
   sub->add_option("input", opts->input, "Surface (.obj .off .stl .ply .mesh) or tet mesh (.mesh .vtk .msh)")
       ->required();
-  sub->add_option("-o,--output", opts->output_dir, "Output folder (tets.mesh, labeling.txt, report.json)")
+  sub->add_option("-o,--output", opts->output_dir,
+                  "Output folder (tets.mesh, labeling.txt, report.json; predeformed.mesh with --predeform)")
       ->required();
   sub->add_option("--quality", opts->tet.quality, "TetGen radius-edge ratio bound (0: none)")
       ->capture_default_str()
@@ -188,6 +217,15 @@ void register_label(CLI::App& app) {
                   "Compactness vs fidelity trade-off of the labeling (larger: fewer, smoother charts)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  sub->add_option("--predeform", opts->predeform.iterations,
+                  "Iterations of the normal-driven pre-deformation; the labeling then reads the pre-deformed "
+                  "normals (0: the model's own)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--predeform-weight", opts->predeform.surface_weight,
+                  "Weight of the normal alignment against rigidity in the pre-deformation")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   sub->callback([opts] { run_label(*opts); });
 }
 

@@ -133,6 +133,22 @@ ConstructResult construct_from_prepared(const core::TetMesh& mesh, const Constru
   const int nv0 = mesh.num_points();
   std::vector<int> surface_of(static_cast<std::size_t>(nv0), -1);  // volume vertex -> surface vertex
   for (std::size_t i = 0; i < bnd.vertex_map.size(); ++i) surface_of[bnd.vertex_map[i]] = static_cast<int>(i);
+  // Pre-deformation: the fidelity term of the labeling reads the normals of the pre-deformed
+  // surface (the compactness term keeps the model's, so chart boundaries stay smooth).
+  PredeformResult pre;
+  std::vector<core::Vec3> data_normals;
+  if (o.predeform.iterations > 0) {
+    pre = predeform(mesh, tris, o.predeform);
+    data_normals.resize(tris.size());
+    for (std::size_t f = 0; f < tris.size(); ++f) {
+      const auto& t = tris[f];
+      data_normals[f] = (pre.points[t[1]] - pre.points[t[0]]).cross(pre.points[t[2]] - pre.points[t[0]]).normalized();
+    }
+    res.seconds.predeform = pre.seconds;
+    log.info("construct: pre-deformation, {} iterations: misalignment {:.4f} -> {:.4f} ({} tets inverted), {:.2f} s",
+             pre.iterations, pre.misalignment_before, pre.misalignment_after, pre.inverted, pre.seconds);
+  }
+  const std::vector<core::Vec3>* start = o.predeform.iterations > 0 ? &pre.points : nullptr;
   std::vector<std::vector<int>> vertex_tris(bnd.surface.points.size());
   for (std::size_t f = 0; f < bnd.surface.cells.size(); ++f)
     for (int v : bnd.surface.cells[f]) vertex_tris[v].push_back(static_cast<int>(f));
@@ -145,6 +161,7 @@ ConstructResult construct_from_prepared(const core::TetMesh& mesh, const Constru
   for (std::size_t fi = 0; fi < factors.size() && !done && attempts < o.max_attempts; ++fi) {
     LabelingOptions lopt = o.labeling;
     lopt.compactness *= factors[fi];
+    if (!data_normals.empty()) lopt.data_normals = data_normals;
     lopt.penalty.clear();
     for (int round = 0; round <= o.relabel_rounds && !done && attempts < o.max_attempts; ++round) {
       if (attempts > 0 && o.time_limit > 0 && since(t0) > o.time_limit) {
@@ -174,7 +191,7 @@ ConstructResult construct_from_prepared(const core::TetMesh& mesh, const Constru
       DeformResult cur;
       int cur_failures = 0;
       try {
-        cur = deform_to_polycube(mesh, tris, rep.labels, o.deform);
+        cur = deform_to_polycube(mesh, tris, rep.labels, o.deform, start);
       } catch (const UnrealizableLabeling& e) {
         failures += fmt::format("{}{}: {}", failures.empty() ? "" : "; ", what, e.what());
         log.info("construct: attempt {}: {}", attempts, e.what());
@@ -233,6 +250,8 @@ ConstructResult construct_from_prepared(const core::TetMesh& mesh, const Constru
   res.refined_edges = def.refined_edges;
   res.inverted_after_linear = def.inverted_after_linear;
   res.untangle = def.untangle;
+  res.predeform = std::move(pre);
+  res.predeform.points.clear();
 
   // Certification.
   const auto t = Clock::now();

@@ -8,6 +8,7 @@
 #include "construct/deform.h"
 #include "construct/labeling.h"
 #include "construct/labeling_repair.h"
+#include "construct/predeform.h"
 #include "construct/tetrahedralize.h"
 #include "core/polycube_map.h"
 #include "core/types.h"
@@ -22,6 +23,9 @@ namespace polycube::construct {
 //! Options of construct_polycube().
 struct ConstructOptions {
   TetrahedralizeOptions tetrahedralize;  //!< surface inputs only
+  //! Normal-driven pre-deformation: the labeling reads the normals of the pre-deformed
+  //! surface, and the deformation starts from its positions (iterations 0: off).
+  PredeformOptions predeform;
   LabelingOptions labeling;              //!< fidelity/compactness trade-off
   RepairOptions repair;                  //!< its `energy` is replaced by `labeling`
   DeformOptions deform;
@@ -54,6 +58,7 @@ struct ConstructOptions {
 //! Wall time of each stage (seconds).
 struct ConstructTimes {
   double tetrahedralize = 0;  //!< TetGen + boundary refinement (or input preparation)
+  double predeform = 0;       //!< normal-driven pre-deformation
   double label = 0;           //!< graph-cut labeling
   double repair = 0;          //!< labeling repair
   double deform = 0;          //!< chart constraints + linear (ARAP) step
@@ -78,6 +83,7 @@ struct ConstructResult {
   int boundaries = 0;               //!< polycube edges (chart boundaries)
   double fidelity = 0;              //!< area-weighted mean of 1 − n·axis (model normals)
   int repair_moves = 0;             //!< moves made by the labeling repair
+  PredeformResult predeform;        //!< figures of the pre-deformation (points cleared)
   int inverted_after_linear = 0;    //!< tets inverted after the linear step (before untangling)
   solve::UntangleResult untangle;   //!< elliptic optimization report
   double isometric_average = 0;     //!< volume-weighted mean isometric distortion (volume-normalized)

@@ -5,6 +5,7 @@
 #include "core/errors.h"
 #include "core/log.h"
 #include "core/topology.h"
+#include "solve/rotation.h"
 #include "solve/sparse_solver.h"
 
 #include <Eigen/Geometry>
@@ -185,6 +186,42 @@ std::vector<std::array<int, 2>> chord_edges(const std::vector<Tri>& tris, const 
   return out;
 }
 
+//! Boundary edges to split so that, at every polycube corner (a vertex whose triangles carry
+//! three axes), each chart's fan of triangles has at least `min_fan` triangles: a chart may have
+//! to open to 270° there, which two or three triangles (each below 180°) cannot do without
+//! nearly flat tets beneath them. Splitting the edge opposite the corner in each triangle of a
+//! thin fan doubles the fan (splitting a spoke would not: both halves keep one triangle at the
+//! corner).
+std::vector<std::array<int, 2>> thin_fan_edges(int nv, const std::vector<Tri>& tris, const std::vector<int>& labels,
+                                               int min_fan) {
+  std::vector<std::array<int, 2>> out;
+  if (min_fan <= 1) return out;
+  std::vector<std::vector<int>> vt(static_cast<std::size_t>(nv));
+  for (std::size_t t = 0; t < tris.size(); ++t)
+    for (int v : tris[t]) vt[v].push_back(static_cast<int>(t));
+  for (int v = 0; v < nv; ++v) {
+    if (vt[v].empty()) continue;
+    int axes = 0;
+    for (int t : vt[v]) axes |= 1 << (labels[t] / 2);
+    if (axes != 7) continue;
+    for (int l = 0; l < 6; ++l) {
+      std::vector<int> fan;
+      for (int t : vt[v])
+        if (labels[t] == l) fan.push_back(t);
+      if (fan.empty() || static_cast<int>(fan.size()) >= min_fan) continue;
+      for (int f : fan) {
+        const Tri& t = tris[f];
+        const int k = static_cast<int>(std::find(t.begin(), t.end(), v) - t.begin());
+        const int a = t[(k + 1) % 3], b = t[(k + 2) % 3];
+        out.push_back({std::min(a, b), std::max(a, b)});
+      }
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 //! Split the edges at their midpoints (every tet and boundary triangle around each edge in
 //! two). Edges whose tets were already modified in this call are left for the next round.
 //! Returns the number of edges split.
@@ -254,12 +291,14 @@ int split_edges(core::TetMesh& mesh, LabeledBoundary& lb, const std::vector<std:
 
 //! Split boundary triangle f (and its tet) at the triangle's centroid. Returns false when the
 //! tet was already modified in this round.
-bool split_boundary_triangle(core::TetMesh& mesh, LabeledBoundary& lb, int f, std::vector<char>& touched) {
+bool split_boundary_triangle(core::TetMesh& mesh, LabeledBoundary& lb, int f, std::vector<char>& touched,
+                             std::vector<Vec3>* other = nullptr) {
   const int t = lb.cell[f];
   if (touched[t]) return false;
   const Tri tri = lb.tris[f];
   const int m = mesh.num_points();
   mesh.points.push_back((mesh.points[tri[0]] + mesh.points[tri[1]] + mesh.points[tri[2]]) / 3.0);
+  if (other) other->push_back(((*other)[tri[0]] + (*other)[tri[1]] + (*other)[tri[2]]) / 3.0);
   const core::Tet old = mesh.cells[t];
   // Replacing one face vertex by a point inside the face keeps the orientation.
   bool first = true;
@@ -415,25 +454,23 @@ int untangle_locally(const core::TetMesh& mesh, const std::vector<int>& vertex_g
   return after;
 }
 
-//! Rotation closest to J (polar decomposition; det +1).
-Eigen::Matrix3d closest_rotation(const Eigen::Matrix3d& J) {
-  Eigen::JacobiSVD<Eigen::Matrix3d> svd(J, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d U = svd.matrixU();
-  const Eigen::Matrix3d V = svd.matrixV();
-  if ((U * V.transpose()).determinant() < 0) U.col(2) = -U.col(2);
-  return U * V.transpose();
-}
 
 }  // namespace
 
 DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tri>& boundary,
-                                const std::vector<int>& labels, const DeformOptions& o) {
+                                const std::vector<int>& labels, const DeformOptions& o,
+                                const std::vector<Vec3>* initial) {
   const auto t_start = Clock::now();
   DeformResult res;
   res.mesh = input;
   core::TetMesh& mesh = res.mesh;
   core::check_indices(mesh);
   LabeledBoundary lb = match_boundary(mesh, boundary, labels);
+  if (initial && initial->size() != mesh.points.size())
+    throw core::InputError(fmt::format("deform: {} initial positions for {} vertices", initial->size(), mesh.points.size()));
+  // Starting positions: the model, or the caller's (a pre-deformed model), refined alongside.
+  std::vector<Vec3> start = initial ? *initial : std::vector<Vec3>{};
+  std::vector<Vec3>* start_ptr = initial ? &start : nullptr;
 
   // 1–2. Charts, chart variables; split boundary triangles the constraints would flatten.
   ChartVars cv;
@@ -441,7 +478,15 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
     cv = chart_variables(mesh.num_points(), lb.tris, lb.labels);
     const std::vector<std::array<int, 2>> chords = chord_edges(lb.tris, lb.labels, cv);
     const std::vector<int> flat = chords.empty() ? forced_flat_triangles(lb.tris, lb.labels, cv) : std::vector<int>{};
-    if (chords.empty() && flat.empty()) break;
+    const std::vector<std::array<int, 2>> fans = chords.empty() && flat.empty()
+                                                     ? thin_fan_edges(mesh.num_points(), lb.tris, lb.labels, o.min_fan)
+                                                     : std::vector<std::array<int, 2>>{};
+    if (chords.empty() && flat.empty() && (fans.empty() || round >= 12)) break;
+    if (!fans.empty()) {
+      res.split_fan_edges += split_edges(mesh, lb, fans, start_ptr);
+      lb = match_boundary(mesh, lb.tris, lb.labels);
+      continue;
+    }
     if (round >= 12) {
       std::vector<int> where;
       for (const auto& e : chords) where.insert(where.end(), e.begin(), e.end());
@@ -452,15 +497,16 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
                                  std::move(where));
     }
     if (!chords.empty()) {
-      res.split_edges += split_edges(mesh, lb, chords);
+      res.split_edges += split_edges(mesh, lb, chords, start_ptr);
     } else {
       std::vector<char> touched(mesh.cells.size(), 0);
-      for (int f : flat) res.split_triangles += split_boundary_triangle(mesh, lb, f, touched) ? 1 : 0;
+      for (int f : flat) res.split_triangles += split_boundary_triangle(mesh, lb, f, touched, start_ptr) ? 1 : 0;
     }
     LabeledBoundary refreshed = match_boundary(mesh, lb.tris, lb.labels);  // refresh owners
     lb = std::move(refreshed);
   }
   const int nv = mesh.num_points();
+  const std::vector<Vec3>& X0 = initial ? start : mesh.points;
   // Two distinct vertices tied to the same chart coordinates on all three axes would coincide.
   {
     const auto et = core::unique_edges(mesh);
@@ -492,7 +538,7 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
     for (int v = 0; v < nv; ++v)
       for (int d = 0; d < 3; ++d) {
         const int j = var[3 * static_cast<std::size_t>(v) + d];
-        y[j] += mesh.points[v][d];
+        y[j] += X0[v][d];
         if (j < cv.num_groups) count[j] += 1.0;
       }
     for (int j = 0; j < cv.num_groups; ++j) y[j] /= count[j];
@@ -528,12 +574,18 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
     if (!solver.factorize(A)) throw core::SolverError("deform: the least-squares system is not positive definite");
     Eigen::VectorXd x = R.apply(y);
     std::vector<Eigen::Matrix3d> rot(el.tets.size(), Eigen::Matrix3d::Identity());
+    if (initial)  // the pre-deformation's rotations
+      for (int t = 0; t < el.size(); ++t) {
+        Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+        for (int i = 0; i < 4; ++i) J += X0[el.tets[t][i]] * el.gradients[t].row(i);
+        rot[t] = solve::closest_rotation(J);
+      }
     for (int it = 0; it < o.arap_iterations; ++it) {
       if (it > 0)
         for (int t = 0; t < el.size(); ++t) {
           Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
           for (int i = 0; i < 4; ++i) J += x.segment<3>(3 * el.tets[t][i]) * el.gradients[t].row(i);
-          rot[t] = closest_rotation(J);
+          rot[t] = solve::closest_rotation(J);
         }
       Eigen::VectorXd rhs = reg * y;
       for (int t = 0; t < el.size(); ++t) {
@@ -568,6 +620,7 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
   uo.initial_epsilon = o.initial_epsilon;
   uo.tolerance = o.tolerance;
   uo.min_det_target = o.min_det;
+  uo.stall_min_det_rise = o.stall_min_det_rise;
   // Ghost height: a fraction of the mean boundary edge length (model space).
   double ghost_h = 0;
   if (o.ghost_height > 0) {

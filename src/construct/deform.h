@@ -12,7 +12,9 @@
 //!    in-plane axis (a chord joining two points of one polycube edge: the chart would have to
 //!    fold over that edge) are split at their midpoint, and boundary triangles whose three
 //!    vertices are tied that way are split at their centroid (the tets around are split too;
-//!    this keeps the mesh conforming and positively oriented);
+//!    this keeps the mesh conforming and positively oriented); then, at each polycube corner,
+//!    the edges opposite the corner in a chart's fan are split until the fan has
+//!    DeformOptions::min_fan triangles (a chart may have to open to 270° at a corner);
 //! 3. an as-rigid-as-possible least-squares solve (local rotations, one sparse factorization)
 //!    gives a first polycube;
 //! 4. the elliptic energy of Garanzha et al. 2021 (solve/untangle.h), with the model tets as
@@ -48,6 +50,12 @@ struct DeformOptions {
   //! When tets stay inverted, split the edges of those tets and optimize again, at most this
   //! many times.
   int refine_rounds = 1;
+  //! The untangling gives up when, for 20 outer iterations, the inverted tets neither get
+  //! fewer nor their min det rises by this much (stuck tets creep towards det 0 forever).
+  double stall_min_det_rise = 0.005;
+  //! At every polycube corner, split boundary edges until each chart's fan around the corner
+  //! has at least this many triangles (0 or 1: never), so a chart can open to 270° there.
+  int min_fan = 4;
   //! Height of the ghost tets (one per boundary triangle, apex above its chart plane; they
   //! keep the boundary from folding over itself), as a fraction of the mean boundary edge
   //! length; 0 = no ghost tets.
@@ -65,6 +73,7 @@ struct DeformResult {
   int num_chart_variables = 0;              //!< chart coordinates after merging touching charts
   int split_triangles = 0;                  //!< boundary triangles split by step 2
   int split_edges = 0;                      //!< boundary edges split by step 2
+  int split_fan_edges = 0;                  //!< boundary edges split to widen corner fans
   int refined_edges = 0;                    //!< edges split by the local refinement of step 4
   solve::UntangleResult untangle;           //!< the elliptic optimization's report
   int inverted_after_linear = 0;            //!< tets inverted after the linear step
@@ -88,12 +97,15 @@ class UnrealizableLabeling : public core::GeometryError {
 //! \param mesh      positively oriented tet mesh (#V, #T)
 //! \param boundary  its boundary triangles (#B, volume vertex indices, any order and orientation)
 //! \param labels    #B labels in {0..5} = {+X, −X, +Y, −Y, +Z, −Z}
+//! \param initial   optional #V starting positions (e.g. predeform()): they give the chart
+//!                  coordinates' first values and the first rotations of the linear step
 //! \throw core::InputError when boundary is not exactly the set of boundary faces of mesh, or a
 //!        label is out of range
 //! \throw UnrealizableLabeling when the labeling forces two distinct vertices onto one point
 //!        (names them); an untangling failure is NOT thrown: check result.untangle.untangled
 //!        (and certify the map, certify.h)
 DeformResult deform_to_polycube(const core::TetMesh& mesh, const std::vector<core::Tri>& boundary,
-                                const std::vector<int>& labels, const DeformOptions& options = {});
+                                const std::vector<int>& labels, const DeformOptions& options = {},
+                                const std::vector<core::Vec3>* initial = nullptr);
 
 }  // namespace polycube::construct

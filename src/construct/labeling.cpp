@@ -60,7 +60,7 @@ LabelingResult graph_cut_labeling(const core::TriMesh& surface, const LabelingOp
         std::vector<int> tri;
         const core::Vec3 dir = label_direction(alpha);
         for (int t = 0; t < g.num_triangles; ++t)
-          if (r.labels[t] != alpha && g.normals[t].dot(dir) > kCandidateDot) {
+          if (r.labels[t] != alpha && (opt.data_normals.empty() ? g.normals[t] : opt.data_normals[t]).dot(dir) > kCandidateDot) {
             node[t] = static_cast<int>(tri.size());
             tri.push_back(t);
           }
@@ -145,10 +145,13 @@ Energy make_energy(const SurfaceGraph& g, const LabelingOptions& opt) {
   en.data.resize(static_cast<std::size_t>(g.num_triangles));
   PC_REQUIRE(opt.penalty.empty() || static_cast<int>(opt.penalty.size()) == g.num_triangles,
              "labeling: penalty needs one entry per triangle");
+  PC_REQUIRE(opt.data_normals.empty() || static_cast<int>(opt.data_normals.size()) == g.num_triangles,
+             "labeling: data_normals needs one entry per triangle");
   for (int t = 0; t < g.num_triangles; ++t) {
     const double w = mean_area > 0.0 ? g.areas[t] / mean_area : 1.0;
     for (int l = 0; l < kNumLabels; ++l) {
-      en.data[t][l] = w * (1.0 - g.normals[t].dot(label_direction(l)));
+      const core::Vec3& n = opt.data_normals.empty() ? g.normals[t] : opt.data_normals[t];
+      en.data[t][l] = w * (1.0 - n.dot(label_direction(l)));
       if (!opt.penalty.empty()) en.data[t][l] += w * opt.penalty[t][l];
     }
   }

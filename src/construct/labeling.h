@@ -38,6 +38,10 @@ struct LabelingOptions {
   //! triangle of mean area (so 1 = as bad as a label 90° off the normal). Used to steer the
   //! labeling away from labels that could not be realized (construct_polycube's relabelling).
   std::vector<std::array<double, 6>> penalty;
+  //! Empty, or #T unit normals read by the fidelity (data) term instead of the surface's own,
+  //! e.g. those of a pre-deformed surface (predeform.h); the compactness weights keep reading
+  //! the surface's normals, so chart boundaries stay as smooth as the model allows.
+  std::vector<core::Vec3> data_normals;
 };
 
 //! Result of graph_cut_labeling().

@@ -498,7 +498,8 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
                          st.min_det, st.inverted);
     // Progress: fewer inverted elements, or a clearly less negative min det (the inverted
     // count can stay flat for many iterations while the remaining ones unfold).
-    if (st.inverted < best_inverted || (st.inverted > 0 && st.min_det > progress_min_det + 0.02 * std::abs(progress_min_det))) {
+    if (st.inverted < best_inverted || (st.inverted > 0 && st.min_det > progress_min_det + std::max(0.02 * std::abs(progress_min_det),
+                                                                      o.stall_min_det_rise))) {
       last_progress = outer;
       progress_min_det = st.min_det;
     }

@@ -115,6 +115,10 @@ struct UntangleOptions {
   //! Give up when, for this many outer iterations, neither the number of inverted elements
   //! decreased nor the min det rose by 2% of its magnitude (0 = never).
   int stall_iterations = 20;
+  //! A rise of the (negative) min det counts as progress only when it is at least this much
+  //! (det J relative to the reference) as well as 2% of its magnitude: with 0, a min det
+  //! creeping towards 0 from below (ε following it down) counts as progress forever.
+  double stall_min_det_rise = 0.0;
   std::vector<Attraction> attractions;  //!< optional extra quadratic terms
   NewtonSolver linear_solver = NewtonSolver::Cholesky;  //!< Newton system solver
   int cg_iterations = 100;     //!< ConjugateGradient: iterations per Newton step at most

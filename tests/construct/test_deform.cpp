@@ -6,6 +6,7 @@
 #include "construct/certifier.h"
 #include "construct/labeling_check.h"
 #include "construct/labeling_repair.h"
+#include "construct/predeform.h"
 #include "construct/tetrahedralize.h"
 #include "core/errors.h"
 #include "core/fixtures.h"
@@ -266,9 +267,9 @@ struct Constructed {
 };
 
 Constructed deform_and_certify(const core::TetMesh& mesh, const std::vector<core::Tri>& tris,
-                               const std::vector<int>& labels) {
+                               const std::vector<int>& labels, const construct::DeformOptions& o = {}) {
   Constructed c;
-  c.def = construct::deform_to_polycube(mesh, tris, labels);
+  c.def = construct::deform_to_polycube(mesh, tris, labels, o);
   core::PolycubeMap map;
   map.tets = c.def.mesh.cells;
   map.model = c.def.mesh.points;
@@ -320,6 +321,80 @@ TEST(Deform, SphereLikeShapeIsCertified) {
   EXPECT_TRUE(c.cert.certified()) << c.cert.reason();
   EXPECT_EQ(c.dist.invalid, 0);
   EXPECT_LT(c.dist.isometric.max, 5.0);
+}
+
+//! Number of boundary triangles of label l at corner vertex v, for every (corner, chart).
+std::vector<int> corner_fans(const std::vector<core::Tri>& tris, const std::vector<int>& labels) {
+  std::map<int, std::array<int, 6>> at;
+  for (std::size_t t = 0; t < tris.size(); ++t)
+    for (int v : tris[t]) {
+      auto& c = at.try_emplace(v, std::array<int, 6>{}).first->second;
+      ++c[labels[t]];
+    }
+  std::vector<int> fans;
+  for (const auto& [v, c] : at) {
+    const bool corner = (c[0] + c[1] > 0) && (c[2] + c[3] > 0) && (c[4] + c[5] > 0);
+    if (!corner) continue;
+    for (int k : c)
+      if (k > 0) fans.push_back(k);
+  }
+  return fans;
+}
+
+TEST(Deform, CornerFansAreWidened) {
+  // The cube's corners have a one- or two-triangle fan per chart; min_fan asks for 4.
+  const auto tr = construct::tetrahedralize(cube_surface(3, 10.0));
+  std::vector<core::Tri> tris;
+  std::vector<int> labels;
+  normal_labels(tr.mesh, tris, labels);
+  const std::vector<int> before = corner_fans(tris, labels);
+  ASSERT_EQ(before.size(), 24u);  // 8 corners x 3 charts
+  EXPECT_LT(*std::min_element(before.begin(), before.end()), 4);
+  construct::DeformOptions o;
+  o.min_fan = 4;
+  const Constructed c = deform_and_certify(tr.mesh, tris, labels, o);
+  EXPECT_TRUE(c.cert.certified()) << c.cert.reason();
+  const std::vector<int> after = corner_fans(c.def.boundary, c.def.labels);
+  ASSERT_EQ(after.size(), 24u);
+  EXPECT_GE(*std::min_element(after.begin(), after.end()), 4);
+  EXPECT_GT(c.def.split_fan_edges, 0);
+}
+
+TEST(Predeform, TurnsNormalsTowardsTheAxes) {
+  // A sphere: its normals are as far from the axes as a closed surface gets on average.
+  core::TriMesh s = cube_surface(8, 2.0);
+  for (Vec3& p : s.points) p = (p - Vec3(1, 1, 1)).normalized() * 10.0;
+  const auto tr = construct::tetrahedralize(s);
+  const core::TetBoundary b = core::boundary(tr.mesh);
+  std::vector<core::Tri> tris;
+  for (const auto& t : b.surface.cells) tris.push_back({b.vertex_map[t[0]], b.vertex_map[t[1]], b.vertex_map[t[2]]});
+  construct::PredeformOptions o;
+  o.iterations = 30;
+  const construct::PredeformResult r = construct::predeform(tr.mesh, tris, o);
+  ASSERT_EQ(r.points.size(), tr.mesh.points.size());
+  EXPECT_GT(r.iterations, 0);
+  EXPECT_GT(r.misalignment_before, 0.05);
+  EXPECT_LT(r.misalignment_after, 0.5 * r.misalignment_before);
+  // Recompute the figure here: area-weighted 1 - max |n . axis| of the deformed surface.
+  double sum = 0, area = 0;
+  for (const auto& t : tris) {
+    const Vec3 n = (r.points[t[1]] - r.points[t[0]]).cross(r.points[t[2]] - r.points[t[0]]);
+    sum += n.norm() - n.cwiseAbs().maxCoeff();
+    area += n.norm();
+  }
+  EXPECT_NEAR(sum / area, r.misalignment_after, 1e-12);
+  // As rigid as possible: the sphere becomes a rounded cube of about its volume (measured:
+  // 0.84 of it), it neither collapses nor inflates.
+  auto volume = [&](const std::vector<Vec3>& P) {
+    double v = 0;
+    for (const auto& c : tr.mesh.cells) v += (P[c[1]] - P[c[0]]).dot((P[c[2]] - P[c[0]]).cross(P[c[3]] - P[c[0]])) / 6;
+    return v;
+  };
+  EXPECT_GT(volume(r.points) / volume(tr.mesh.points), 0.7);
+  EXPECT_LT(volume(r.points) / volume(tr.mesh.points), 1.1);
+  // Deterministic.
+  const construct::PredeformResult again = construct::predeform(tr.mesh, tris, o);
+  EXPECT_EQ(again.points, r.points);
 }
 
 TEST(Certify, RejectsInvertedAndOffPlaneMaps) {
