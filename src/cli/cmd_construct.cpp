@@ -160,6 +160,10 @@ void register_construct(CLI::App& app) {
                   "normals)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  sub->add_option("--smooth", c.labeling.smoothing_rounds,
+                  "Sweeps of chart-boundary smoothing after the graph cut (teeth and zigzags removed)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   sub->add_option("--predeform-weight", c.predeform.surface_weight,
                   "Weight of the normal alignment against rigidity in the pre-deformation")
       ->capture_default_str()

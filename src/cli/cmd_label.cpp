@@ -222,6 +222,10 @@ void register_label(CLI::App& app) {
                   "normals (0: the model's own)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  sub->add_option("--smooth", opts->labeling.smoothing_rounds,
+                  "Sweeps of chart-boundary smoothing after the graph cut (teeth and zigzags removed)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   sub->add_option("--predeform-weight", opts->predeform.surface_weight,
                   "Weight of the normal alignment against rigidity in the pre-deformation")
       ->capture_default_str()

@@ -34,6 +34,32 @@ const char* label_name(int label) {
   return kNames[label];
 }
 
+int smooth_chart_boundaries(const core::TriMesh& surface, std::vector<int>& labels, int max_rounds) {
+  PC_REQUIRE(labels.size() == surface.cells.size(), "smooth_chart_boundaries: one label per triangle");
+  const SurfaceGraph g = detail::build_surface_graph(surface);
+  int changes = 0;
+  for (int round = 0; round < max_rounds; ++round) {
+    int changed = 0;
+    for (int t = 0; t < g.num_triangles; ++t) {
+      std::array<int, 3> nl{};
+      for (int k = 0; k < 3; ++k) nl[k] = labels[g.other(g.triangle_edges[t][k], t)];
+      for (int k = 0; k < 3; ++k) {
+        const int l = nl[k];
+        if (l == labels[t]) continue;
+        const int same = (nl[0] == l) + (nl[1] == l) + (nl[2] == l);
+        if (same >= 2) {
+          labels[t] = l;
+          ++changed;
+          break;
+        }
+      }
+    }
+    changes += changed;
+    if (changed == 0) break;
+  }
+  return changes;
+}
+
 LabelingResult graph_cut_labeling(const core::TriMesh& surface, const LabelingOptions& opt) {
   const SurfaceGraph g = detail::build_surface_graph(surface);
   const Energy en = detail::make_energy(g, opt);
@@ -110,6 +136,11 @@ LabelingResult graph_cut_labeling(const core::TriMesh& surface, const LabelingOp
       }
       if (!improved) break;
     }
+  }
+  if (opt.smoothing_rounds > 0) {
+    const int changed = smooth_chart_boundaries(surface, r.labels, opt.smoothing_rounds);
+    if (changed > 0) energy = en.total(g, r.labels);
+    core::logger().debug("labeling: boundary smoothing changed {} triangles", changed);
   }
   r.energy = energy / std::max(1, g.num_triangles);
   core::logger().debug("labeling: energy {:.6g} after {} cycles, {} moves", r.energy, r.cycles, r.moves);

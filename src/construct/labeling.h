@@ -42,6 +42,8 @@ struct LabelingOptions {
   //! e.g. those of a pre-deformed surface (predeform.h); the compactness weights keep reading
   //! the surface's normals, so chart boundaries stay as smooth as the model allows.
   std::vector<core::Vec3> data_normals;
+  //! Sweeps of smooth_chart_boundaries() after the graph cut (0: none).
+  int smoothing_rounds = 0;
 };
 
 //! Result of graph_cut_labeling().
@@ -58,6 +60,14 @@ struct LabelingResult {
 //! \param surface  #V points, #T triangles with outward orientation
 //! \throw core::InputError when the surface is not a closed edge-manifold surface
 LabelingResult graph_cut_labeling(const core::TriMesh& surface, const LabelingOptions& options = {});
+
+//! Smooth the chart boundaries of a labeling: a triangle with two or three edge neighbours of
+//! one other label (a "tooth" of its chart, a zigzag of the boundary) takes that label, until
+//! no triangle changes or after max_rounds sweeps. Zigzags at the scale of the triangles become
+//! polycube edges that fold back on themselves, which the deformation cannot untangle.
+//! Deterministic (triangles visited in index order). Returns the number of changes.
+//! \pre labels.size() == surface.cells.size(), each in {0..5}
+int smooth_chart_boundaries(const core::TriMesh& surface, std::vector<int>& labels, int max_rounds = 10);
 
 //! Fidelity of a labeling: area-weighted mean of `1 − n·axis` (0 = every triangle exactly
 //! facing its axis; at most 2).

@@ -253,6 +253,33 @@ TEST(Labeling, Deterministic) {
   EXPECT_EQ(a.labels, b.labels);
 }
 
+TEST(Labeling, BoundarySmoothingRemovesTeethOnly) {
+  // A box labeled by its normals, with one triangle in the middle of the +Z face given -Y:
+  // its three neighbours are +Z, so smoothing gives it +Z back and changes nothing else.
+  const core::TriMesh box = test::make_box(1.0, 1.0, 1.0, 4);
+  const auto lab = construct::graph_cut_labeling(box);
+  std::vector<int> labels = lab.labels;
+  // The +Z triangle whose centroid is nearest the middle of the face.
+  int middle = -1;
+  double best = 1e300;
+  for (int t = 0; t < box.num_cells(); ++t) {
+    if (labels[t] != 4) continue;
+    const auto& c = box.cells[t];
+    const core::Vec3 g = (box.points[c[0]] + box.points[c[1]] + box.points[c[2]]) / 3.0;
+    const double d = (g - core::Vec3(0.5, 0.5, 1.0)).norm();
+    if (d < best) best = d, middle = t;
+  }
+  ASSERT_GE(middle, 0);
+  labels[middle] = 3;
+  const int changed = construct::smooth_chart_boundaries(box, labels);
+  EXPECT_EQ(changed, 1);
+  EXPECT_EQ(labels, lab.labels);
+  // Nothing to smooth on a clean labeling.
+  std::vector<int> clean = lab.labels;
+  EXPECT_EQ(construct::smooth_chart_boundaries(box, clean), 0);
+  EXPECT_EQ(clean, lab.labels);
+}
+
 TEST(LabelingCheck, FindsEachKindOfDefect) {
   const core::TriMesh cube = test::make_box(1.0, 1.0, 1.0, 4);
   auto labels = construct::graph_cut_labeling(cube).labels;
