@@ -87,6 +87,10 @@ void run_construct(const ConstructCliOptions& o) {
       {"boundaries", r.boundaries},
       {"fidelity", r.fidelity},
       {"repair_moves", r.repair_moves},
+      {"axis_rotation",
+       {{"rotated", !r.axis_rotation.rotation.isIdentity()},
+        {"l1_energy_before", r.axis_rotation.energy_before},
+        {"l1_energy_after", r.axis_rotation.energy_after}}},
       {"predeform",
        {{"iterations", r.predeform.iterations},
         {"misalignment_before", r.predeform.misalignment_before},
@@ -160,6 +164,9 @@ void register_construct(CLI::App& app) {
                   "normals)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  sub->add_flag("!--no-align", c.align_axes,
+                "Keep the model's orientation (default: rotate it so its normals cluster on the axes before the "
+                "labeling; the written model keeps the input's positions)");
   sub->add_option("--smooth", c.labeling.smoothing_rounds,
                   "Sweeps of chart-boundary smoothing after the graph cut (teeth and zigzags removed)")
       ->capture_default_str()

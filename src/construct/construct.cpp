@@ -113,10 +113,23 @@ SteeredLabeling steered_labeling(const core::TriMesh& s, const std::vector<std::
 
 }  // namespace
 
-ConstructResult construct_from_prepared(const core::TetMesh& mesh, const ConstructOptions& o) {
+ConstructResult construct_from_prepared(const core::TetMesh& input, const ConstructOptions& o) {
   auto& log = core::logger();
   const auto t0 = Clock::now();
   ConstructResult res;
+
+  // Axis alignment: the labeling and the deformation work on the rotated model (the polycube's
+  // axes are the rotated frame); the map's model positions are the input's.
+  core::TetMesh mesh = input;
+  if (o.align_axes) {
+    res.axis_rotation = best_axis_rotation(core::boundary(input).surface);
+    log.debug("construct: axis alignment: L1 energy of the normals {:.4f}, best rotation {:.4f}", res.axis_rotation.energy_before, res.axis_rotation.energy_best);
+    if (!res.axis_rotation.rotation.isIdentity()) {
+      for (core::Vec3& p : mesh.points) p = res.axis_rotation.rotation * p;
+      log.info("construct: model rotated to the axes (normals' L1 energy {:.4f} -> {:.4f})",
+               res.axis_rotation.energy_before, res.axis_rotation.energy_after);
+    }
+  }
 
   // Labeling, repair, deformation; when the map cannot be untangled, revisit the labeling with
   // other compactness weights (each attempt is a different valid labeling).
@@ -257,6 +270,11 @@ ConstructResult construct_from_prepared(const core::TetMesh& mesh, const Constru
   const auto t = Clock::now();
   res.map.tets = def.mesh.cells;
   res.map.model = def.mesh.points;
+  if (!res.axis_rotation.rotation.isIdentity()) {
+    const Eigen::Matrix3d back = res.axis_rotation.rotation.transpose();
+    for (std::size_t v = 0; v < res.map.model.size(); ++v)
+      res.map.model[v] = v < input.points.size() ? input.points[v] : core::Vec3(back * res.map.model[v]);
+  }
   res.map.polycube = def.polycube;
   res.certificate = certify_polycube_map(res.map, def.boundary, def.labels, o.certify);
   if (!res.certificate.certified())
@@ -274,7 +292,7 @@ ConstructResult construct_from_prepared(const core::TetMesh& mesh, const Constru
   }
   std::sort(keys.begin(), keys.end());
   core::TriMesh surface;
-  surface.points = def.mesh.points;
+  surface.points = def.mesh.points;  // the rotated frame, where the labels are axes
   for (const auto& s : fb.surface.cells) {
     const core::Tri tri{fb.vertex_map[s[0]], fb.vertex_map[s[1]], fb.vertex_map[s[2]]};
     std::array<int, 3> k{tri[0], tri[1], tri[2]};

@@ -8,6 +8,7 @@
 #include "construct/deform.h"
 #include "construct/labeling.h"
 #include "construct/labeling_repair.h"
+#include "construct/orientation.h"
 #include "construct/predeform.h"
 #include "construct/tetrahedralize.h"
 #include "core/polycube_map.h"
@@ -26,6 +27,9 @@ struct ConstructOptions {
   //! Normal-driven pre-deformation: the labeling reads the normals of the pre-deformed
   //! surface, and the deformation starts from its positions (iterations 0: off).
   PredeformOptions predeform;
+  //! Rotate the model so its normals cluster on the axes (orientation.h) before the labeling;
+  //! the map keeps the input's model positions, the polycube is in the rotated frame.
+  bool align_axes = true;
   LabelingOptions labeling;              //!< fidelity/compactness trade-off
   RepairOptions repair;                  //!< its `energy` is replaced by `labeling`
   DeformOptions deform;
@@ -84,6 +88,7 @@ struct ConstructResult {
   double fidelity = 0;              //!< area-weighted mean of 1 − n·axis (model normals)
   int repair_moves = 0;             //!< moves made by the labeling repair
   PredeformResult predeform;        //!< figures of the pre-deformation (points cleared)
+  AxisRotation axis_rotation;       //!< rotation applied before the labeling (identity: none)
   int inverted_after_linear = 0;    //!< tets inverted after the linear step (before untangling)
   solve::UntangleResult untangle;   //!< elliptic optimization report
   double isometric_average = 0;     //!< volume-weighted mean isometric distortion (volume-normalized)

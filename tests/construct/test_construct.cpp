@@ -3,6 +3,7 @@
 #include "construct/labeling.h"
 #include "construct/labeling_check.h"
 #include "construct/labeling_repair.h"
+#include "construct/orientation.h"
 #include "construct/polycube_estimate.h"
 #include "construct/tetrahedralize.h"
 #include "core/errors.h"
@@ -278,6 +279,23 @@ TEST(Labeling, BoundarySmoothingRemovesTeethOnly) {
   std::vector<int> clean = lab.labels;
   EXPECT_EQ(construct::smooth_chart_boundaries(box, clean), 0);
   EXPECT_EQ(clean, lab.labels);
+}
+
+TEST(AxisRotation, RotatedBoxIsTurnedBackAndAlignedBoxKept) {
+  const core::TriMesh box = test::make_box(1.0, 2.0, 3.0, 3);
+  const construct::AxisRotation kept = construct::best_axis_rotation(box);
+  EXPECT_TRUE(kept.rotation.isIdentity());
+  EXPECT_NEAR(kept.energy_before, 1.0, 1e-12);
+  core::TriMesh turned = box;
+  const Eigen::Matrix3d Q = (Eigen::AngleAxisd(0.5, core::Vec3(1, 2, 3).normalized())).toRotationMatrix();
+  for (core::Vec3& p : turned.points) p = Q * p;
+  const construct::AxisRotation r = construct::best_axis_rotation(turned);
+  EXPECT_GT(r.energy_before, 1.1);
+  EXPECT_NEAR(r.energy_after, 1.0, 1e-4);
+  // R Q maps each axis onto an axis (up to sign): a signed permutation matrix.
+  const Eigen::Matrix3d P = r.rotation * Q;
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(P.row(i).cwiseAbs().maxCoeff(), 1.0, 1e-3);
+  EXPECT_NEAR(P.determinant(), 1.0, 1e-9);
 }
 
 TEST(LabelingCheck, FindsEachKindOfDefect) {
