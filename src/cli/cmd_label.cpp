@@ -97,12 +97,7 @@ void run_label(const LabelOptions& o) {
     for (const auto& t : bnd.surface.cells)
       tris.push_back({bnd.vertex_map[t[0]], bnd.vertex_map[t[1]], bnd.vertex_map[t[2]]});
     pre = construct::predeform(mesh, tris, o.predeform);
-    labeling.data_normals.resize(tris.size());
-    for (std::size_t f = 0; f < tris.size(); ++f) {
-      const auto& t = tris[f];
-      labeling.data_normals[f] =
-          (pre.points[t[1]] - pre.points[t[0]]).cross(pre.points[t[2]] - pre.points[t[0]]).normalized();
-    }
+    labeling.data_normals = construct::triangle_normals(pre.points, tris);
   }
   const construct::LabelingResult lab = construct::graph_cut_labeling(bnd.surface, labeling);
   construct::RepairOptions ropt;

@@ -152,11 +152,7 @@ ConstructResult construct_from_prepared(const core::TetMesh& input, const Constr
   std::vector<core::Vec3> data_normals;
   if (o.predeform.iterations > 0) {
     pre = predeform(mesh, tris, o.predeform);
-    data_normals.resize(tris.size());
-    for (std::size_t f = 0; f < tris.size(); ++f) {
-      const auto& t = tris[f];
-      data_normals[f] = (pre.points[t[1]] - pre.points[t[0]]).cross(pre.points[t[2]] - pre.points[t[0]]).normalized();
-    }
+    data_normals = triangle_normals(pre.points, tris);
     res.seconds.predeform = pre.seconds;
     log.info("construct: pre-deformation, {} iterations: misalignment {:.4f} -> {:.4f} ({} tets inverted), {:.2f} s",
              pre.iterations, pre.misalignment_before, pre.misalignment_after, pre.inverted, pre.seconds);

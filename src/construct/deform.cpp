@@ -561,11 +561,7 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
             if (vi <= vj) trip.emplace_back(vi, vj, L(i, j));
           }
     }
-    double trace = 0;
-    for (const auto& tr : trip)
-      if (tr.row() == tr.col()) trace += tr.value();
-    const double reg = 1e-8 * trace / nvar;  // removes the translations' null space
-    for (int j = 0; j < nvar; ++j) trip.emplace_back(j, j, reg);
+    const double reg = solve::add_tiny_diagonal(trip, nvar);  // removes the translations' null space
     Eigen::SparseMatrix<double> A(nvar, nvar);
     A.setFromTriplets(trip.begin(), trip.end());
     A.makeCompressed();

@@ -68,6 +68,13 @@ double misalignment(const std::vector<Vec3>& an) {
 
 }  // namespace
 
+std::vector<Vec3> triangle_normals(const std::vector<Vec3>& points, const std::vector<core::Tri>& tris) {
+  std::vector<Vec3> n = area_normals(points, tris);
+  for (Vec3& v : n)
+    if (v.norm() > 0) v.normalize();
+  return n;
+}
+
 PredeformResult predeform(const core::TetMesh& mesh, const std::vector<core::Tri>& boundary,
                           const PredeformOptions& o) {
   const auto t0 = Clock::now();
@@ -107,11 +114,7 @@ PredeformResult predeform(const core::TetMesh& mesh, const std::vector<core::Tri
       trip.emplace_back(j, j, wf[f]);
       trip.emplace_back(std::min(i, j), std::max(i, j), -wf[f]);
     }
-  double trace = 0;
-  for (const auto& tr : trip)
-    if (tr.row() == tr.col()) trace += tr.value();
-  const double reg = 1e-8 * trace / nv;  // removes the translations' null space
-  for (int v = 0; v < nv; ++v) trip.emplace_back(v, v, reg);
+  const double reg = solve::add_tiny_diagonal(trip, nv);  // removes the translations' null space
   Eigen::SparseMatrix<double> A(nv, nv);
   A.setFromTriplets(trip.begin(), trip.end());
   A.makeCompressed();

@@ -43,6 +43,10 @@ struct PredeformResult {
   double seconds = 0;
 };
 
+//! Unit normals of triangles at the given positions (zero for a degenerate triangle), e.g. the
+//! pre-deformed normals the labeling's fidelity term reads (LabelingOptions::data_normals).
+std::vector<core::Vec3> triangle_normals(const std::vector<core::Vec3>& points, const std::vector<core::Tri>& tris);
+
 //! Pre-deform a tet mesh so that its boundary normals approach the six axis directions.
 //! \param mesh      positively oriented tet mesh (#V, #T)
 //! \param boundary  its #B boundary triangles (volume vertex indices, outward)

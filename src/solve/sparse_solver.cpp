@@ -4,6 +4,7 @@
 #include "core/errors.h"
 #include "core/log.h"
 
+#include <algorithm>
 #include <cholmod.h>
 
 #include <string>
@@ -135,6 +136,15 @@ Eigen::VectorXd solve_spd(const Eigen::SparseMatrix<double>& A, const Eigen::Vec
   a.makeCompressed();
   if (!solver.factorize(a)) throw core::SolverError("sparse solver: matrix is not positive definite");
   return solver.solve(b);
+}
+
+double add_tiny_diagonal(std::vector<Eigen::Triplet<double>>& triplets, int n) {
+  double trace = 0;
+  for (const auto& t : triplets)
+    if (t.row() == t.col()) trace += t.value();
+  const double reg = 1e-8 * trace / std::max(1, n);
+  for (int j = 0; j < n; ++j) triplets.emplace_back(j, j, reg);
+  return reg;
 }
 
 }  // namespace polycube::solve

@@ -11,6 +11,7 @@
 #include <Eigen/SparseCore>
 
 #include <memory>
+#include <vector>
 
 namespace polycube::solve {
 
@@ -54,6 +55,12 @@ class SparseSpdSolver {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+//! Add ρ·I to a symmetric matrix given as triplets (n by n), with ρ = 1e-8 × the mean of the
+//! diagonal entries: removes the null space of the translations of a Laplacian-like matrix
+//! without changing its solutions measurably. Returns ρ (the right-hand side then gets ρ·x0 to
+//! keep the system's solution near x0).
+double add_tiny_diagonal(std::vector<Eigen::Triplet<double>>& triplets, int n);
 
 //! One-shot solve of the SPD system A x = b (upper triangle of A read).
 //! \throw core::SolverError when A is not positive definite or CHOLMOD fails
