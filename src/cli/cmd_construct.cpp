@@ -190,6 +190,11 @@ void register_construct(CLI::App& app) {
                   "and label again, at most this many times")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  sub->add_option("--unfold-moves", c.unfold_moves,
+                  "After the repair, at most this many local relabellings against the folds of the fast polycube "
+                  "estimate (0: none)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   sub->add_option("--time-limit", c.time_limit,
                   "Seconds after which no new labeling/deformation attempt starts (0: no limit)")
       ->capture_default_str()
