@@ -164,6 +164,11 @@ void register_construct(CLI::App& app) {
                   "normals)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  sub->add_option("--predeform-retry", c.predeform_retry,
+                  "When every attempt fails (and --predeform is 0), run them again with a pre-deformation of this "
+                  "many iterations and estimate-driven unfolding (0: never)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   sub->add_flag("!--no-align", c.align_axes,
                 "Keep the model's orientation (default: rotate it so its normals cluster on the axes before the "
                 "labeling; the written model keeps the input's positions)");

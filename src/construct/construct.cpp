@@ -146,18 +146,6 @@ ConstructResult construct_from_prepared(const core::TetMesh& input, const Constr
   const int nv0 = mesh.num_points();
   std::vector<int> surface_of(static_cast<std::size_t>(nv0), -1);  // volume vertex -> surface vertex
   for (std::size_t i = 0; i < bnd.vertex_map.size(); ++i) surface_of[bnd.vertex_map[i]] = static_cast<int>(i);
-  // Pre-deformation: the fidelity term of the labeling reads the normals of the pre-deformed
-  // surface (the compactness term keeps the model's, so chart boundaries stay smooth).
-  PredeformResult pre;
-  std::vector<core::Vec3> data_normals;
-  if (o.predeform.iterations > 0) {
-    pre = predeform(mesh, tris, o.predeform);
-    data_normals = triangle_normals(pre.points, tris);
-    res.seconds.predeform = pre.seconds;
-    log.info("construct: pre-deformation, {} iterations: misalignment {:.4f} -> {:.4f} ({} tets inverted), {:.2f} s",
-             pre.iterations, pre.misalignment_before, pre.misalignment_after, pre.inverted, pre.seconds);
-  }
-  const std::vector<core::Vec3>* start = o.predeform.iterations > 0 ? &pre.points : nullptr;
   std::vector<std::vector<int>> vertex_tris(bnd.surface.points.size());
   for (std::size_t f = 0; f < bnd.surface.cells.size(); ++f)
     for (int v : bnd.surface.cells[f]) vertex_tris[v].push_back(static_cast<int>(f));
@@ -167,87 +155,114 @@ ConstructResult construct_from_prepared(const core::TetMesh& input, const Constr
   std::string failures;
   bool done = false;
   int attempts = 0;
-  for (std::size_t fi = 0; fi < factors.size() && !done && attempts < o.max_attempts; ++fi) {
-    LabelingOptions lopt = o.labeling;
-    lopt.compactness *= factors[fi];
-    if (!data_normals.empty()) lopt.data_normals = data_normals;
-    lopt.penalty.clear();
-    for (int round = 0; round <= o.relabel_rounds && !done && attempts < o.max_attempts; ++round) {
-      if (attempts > 0 && o.time_limit > 0 && since(t0) > o.time_limit) {
-        failures += fmt::format("{}time limit of {:g} s reached after {} attempt(s)", failures.empty() ? "" : "; ",
-                                o.time_limit, attempts);
-        fi = factors.size();
-        break;
-      }
-      ++attempts;
-      const SteeredLabeling sl = steered_labeling(bnd.surface, vertex_tris, lopt, o, res.seconds);
-      const RepairResult& rep = sl.repair;
-      res.repair_moves = rep.moves;
-      const std::string what = fmt::format("compactness {:.3g}{}", lopt.compactness,
-                                           round > 0 ? fmt::format(" relabel {}", round) : std::string());
-      if (!sl.valid) {
-        failures += fmt::format("{}{}: no valid labeling ({} defect(s): {})", failures.empty() ? "" : "; ", what,
-                                rep.check.defects.size(), defects_text(rep.check, 2));
-        break;  // penalties only make it harder: go to the next compactness
-      }
-      log.info("construct: attempt {} ({}): labeling valid ({} charts, estimate folds {} triangles)", attempts, what,
-               rep.check.layout.num_charts(), sl.estimate.flipped.size());
-      // Where the attempt failed (volume vertices of the original mesh); empty on success.
-      std::vector<char> bad(bnd.surface.points.size(), 0);
-      auto mark = [&](int v) {
-        if (v >= 0 && v < nv0 && surface_of[v] >= 0) bad[surface_of[v]] = 1;
-      };
-      DeformResult cur;
-      int cur_failures = 0;
-      try {
-        cur = deform_to_polycube(mesh, tris, rep.labels, o.deform, start);
-      } catch (const UnrealizableLabeling& e) {
-        failures += fmt::format("{}{}: {}", failures.empty() ? "" : "; ", what, e.what());
-        log.info("construct: attempt {}: {}", attempts, e.what());
-        for (int v : e.vertices()) mark(v);
-      }
-      const bool deformed = !cur.polycube.empty();
-      if (deformed) {
-        res.seconds.deform += cur.seconds_linear;
-        res.seconds.untangle += cur.seconds_untangle;
-        log.info("construct: deformation {:.2f} s ({} inverted after the linear step), untangling {:.2f} s "
-                 "({} iterations, {} Newton steps, min det {:.3g}, {} inverted)",
-                 cur.seconds_linear, cur.inverted_after_linear, cur.seconds_untangle, cur.untangle.iterations,
-                 cur.untangle.newton_steps, cur.untangle.min_det, cur.untangle.inverted_after);
-        // The tets and the boundary triangles that face away from their label in polycube
-        // space (with every tet positive, such a triangle means the surface folds over itself).
-        const auto& P = cur.polycube;
-        int inverted = 0, wrong_facing = 0;
-        for (const auto& c : cur.mesh.cells) {
-          const double det = (P[c[1]] - P[c[0]]).dot((P[c[2]] - P[c[0]]).cross(P[c[3]] - P[c[0]]));
-          if (det > 0) continue;
-          ++inverted;
-          for (int v : c) mark(v);
+  // Passes: the options as given; then, when every attempt failed and no pre-deformation was
+  // asked for, the same schedule again on a labeling of the pre-deformed normals with local
+  // unfolding against the fast estimate (cup certifies only so). The shapes that certify in
+  // the first pass get exactly the first pass's map.
+  const int passes = o.predeform.iterations == 0 && o.predeform_retry > 0 ? 2 : 1;
+  PredeformResult pre;
+  bool timed_out = false;
+  for (int pass = 0; pass < passes && !done && !timed_out && attempts < o.max_attempts; ++pass) {
+    ConstructOptions po = o;
+    if (pass == 1) {
+      po.predeform.iterations = o.predeform_retry;
+      po.unfold_moves = std::max(o.unfold_moves, o.predeform_retry_unfold_moves);
+      log.info("construct: every attempt failed; again with a pre-deformation of {} iterations", o.predeform_retry);
+    }
+    // Pre-deformation: the fidelity term of the labeling reads the normals of the pre-deformed
+    // surface (the compactness term keeps the model's, so chart boundaries stay smooth).
+    std::vector<core::Vec3> data_normals;
+    if (po.predeform.iterations > 0) {
+      pre = predeform(mesh, tris, po.predeform);
+      data_normals = triangle_normals(pre.points, tris);
+      res.seconds.predeform += pre.seconds;
+      log.info("construct: pre-deformation, {} iterations: misalignment {:.4f} -> {:.4f} ({} tets inverted), {:.2f} s",
+               pre.iterations, pre.misalignment_before, pre.misalignment_after, pre.inverted, pre.seconds);
+    }
+    const std::vector<core::Vec3>* start = po.predeform.iterations > 0 ? &pre.points : nullptr;
+    for (std::size_t fi = 0; fi < factors.size() && !done && attempts < o.max_attempts; ++fi) {
+      LabelingOptions lopt = o.labeling;
+      lopt.compactness *= factors[fi];
+      if (!data_normals.empty()) lopt.data_normals = data_normals;
+      lopt.penalty.clear();
+      for (int round = 0; round <= o.relabel_rounds && !done && attempts < o.max_attempts; ++round) {
+        if (attempts > 0 && o.time_limit > 0 && since(t0) > o.time_limit) {
+          failures += fmt::format("{}time limit of {:g} s reached after {} attempt(s)", failures.empty() ? "" : "; ",
+                                  o.time_limit, attempts);
+          fi = factors.size();
+          timed_out = true;
+          break;
         }
-        for (std::size_t f = 0; f < cur.boundary.size(); ++f) {
-          const auto& b = cur.boundary[f];
-          const core::Vec3 n = (P[b[1]] - P[b[0]]).cross(P[b[2]] - P[b[0]]);
-          if (n.dot(label_direction(cur.labels[f])) > 0) continue;
-          ++wrong_facing;
-          for (int v : b) mark(v);
+        ++attempts;
+        const SteeredLabeling sl = steered_labeling(bnd.surface, vertex_tris, lopt, po, res.seconds);
+        const RepairResult& rep = sl.repair;
+        res.repair_moves = rep.moves;
+        const std::string what = fmt::format("{}compactness {:.3g}{}", pass == 1 ? "pre-deformed, " : "", lopt.compactness,
+                                             round > 0 ? fmt::format(" relabel {}", round) : std::string());
+        if (!sl.valid) {
+          failures += fmt::format("{}{}: no valid labeling ({} defect(s): {})", failures.empty() ? "" : "; ", what,
+                                  rep.check.defects.size(), defects_text(rep.check, 2));
+          break;  // penalties only make it harder: go to the next compactness
         }
-        cur_failures = inverted + wrong_facing + (cur.untangle.untangled ? 0 : 1);
-        done = cur.untangle.untangled && wrong_facing == 0;
-        if (!done)
-          failures += fmt::format("{}{}: {} tets stay inverted, {} boundary triangles face away from their label",
-                                  failures.empty() ? "" : "; ", what, cur.untangle.inverted_after, wrong_facing);
-      }
-      if (!done) {
-        const int n = penalize_around(bnd.surface, vertex_tris, rep.labels, std::move(bad), o.relabel_ring,
-                                      o.relabel_penalty, lopt.penalty);
-        log.info("construct: relabelling: penalized the labels of {} triangles", n);
-      }
-      if (!deformed) continue;
-      // Keep the attempt with the fewest inverted tets.
-      if (!have_def || done || cur_failures < def_failures) {
-        def = std::move(cur);
-        def_failures = cur_failures;
-        have_def = true;
+        log.info("construct: attempt {} ({}): labeling valid ({} charts, estimate folds {} triangles)", attempts, what,
+                 rep.check.layout.num_charts(), sl.estimate.flipped.size());
+        // Where the attempt failed (volume vertices of the original mesh); empty on success.
+        std::vector<char> bad(bnd.surface.points.size(), 0);
+        auto mark = [&](int v) {
+          if (v >= 0 && v < nv0 && surface_of[v] >= 0) bad[surface_of[v]] = 1;
+        };
+        DeformResult cur;
+        int cur_failures = 0;
+        try {
+          cur = deform_to_polycube(mesh, tris, rep.labels, o.deform, start);
+        } catch (const UnrealizableLabeling& e) {
+          failures += fmt::format("{}{}: {}", failures.empty() ? "" : "; ", what, e.what());
+          log.info("construct: attempt {}: {}", attempts, e.what());
+          for (int v : e.vertices()) mark(v);
+        }
+        const bool deformed = !cur.polycube.empty();
+        if (deformed) {
+          res.seconds.deform += cur.seconds_linear;
+          res.seconds.untangle += cur.seconds_untangle;
+          log.info("construct: deformation {:.2f} s ({} inverted after the linear step), untangling {:.2f} s "
+                   "({} iterations, {} Newton steps, min det {:.3g}, {} inverted)",
+                   cur.seconds_linear, cur.inverted_after_linear, cur.seconds_untangle, cur.untangle.iterations,
+                   cur.untangle.newton_steps, cur.untangle.min_det, cur.untangle.inverted_after);
+          // The tets and the boundary triangles that face away from their label in polycube
+          // space (with every tet positive, such a triangle means the surface folds over itself).
+          const auto& P = cur.polycube;
+          int inverted = 0, wrong_facing = 0;
+          for (const auto& c : cur.mesh.cells) {
+            const double det = (P[c[1]] - P[c[0]]).dot((P[c[2]] - P[c[0]]).cross(P[c[3]] - P[c[0]]));
+            if (det > 0) continue;
+            ++inverted;
+            for (int v : c) mark(v);
+          }
+          for (std::size_t f = 0; f < cur.boundary.size(); ++f) {
+            const auto& b = cur.boundary[f];
+            const core::Vec3 n = (P[b[1]] - P[b[0]]).cross(P[b[2]] - P[b[0]]);
+            if (n.dot(label_direction(cur.labels[f])) > 0) continue;
+            ++wrong_facing;
+            for (int v : b) mark(v);
+          }
+          cur_failures = inverted + wrong_facing + (cur.untangle.untangled ? 0 : 1);
+          done = cur.untangle.untangled && wrong_facing == 0;
+          if (!done)
+            failures += fmt::format("{}{}: {} tets stay inverted, {} boundary triangles face away from their label",
+                                    failures.empty() ? "" : "; ", what, cur.untangle.inverted_after, wrong_facing);
+        }
+        if (!done) {
+          const int n = penalize_around(bnd.surface, vertex_tris, rep.labels, std::move(bad), o.relabel_ring,
+                                        o.relabel_penalty, lopt.penalty);
+          log.info("construct: relabelling: penalized the labels of {} triangles", n);
+        }
+        if (!deformed) continue;
+        // Keep the attempt with the fewest inverted tets.
+        if (!have_def || done || cur_failures < def_failures) {
+          def = std::move(cur);
+          def_failures = cur_failures;
+          have_def = true;
+        }
       }
     }
   }

@@ -27,6 +27,11 @@ struct ConstructOptions {
   //! Normal-driven pre-deformation: the labeling reads the normals of the pre-deformed
   //! surface, and the deformation starts from its positions (iterations 0: off).
   PredeformOptions predeform;
+  //! When every attempt fails and `predeform` is off: run the attempts again with a
+  //! pre-deformation of this many iterations (0: never) and at least
+  //! `predeform_retry_unfold_moves` unfolding moves.
+  int predeform_retry = 30;
+  int predeform_retry_unfold_moves = 50;
   //! Rotate the model so its normals cluster on the axes (orientation.h) before the labeling;
   //! the map keeps the input's model positions, the polycube is in the rotated frame.
   bool align_axes = true;
