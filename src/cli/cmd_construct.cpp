@@ -190,6 +190,22 @@ void register_construct(CLI::App& app) {
                   "When tets stay inverted, split their edges and untangle again, at most this many times")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  sub->add_flag("--flow", c.deform.flow,
+                "First polycube by the foldover-free planarity flow (the model flows towards its chart planes "
+                "without folding) instead of the as-rigid-as-possible least squares");
+  sub->add_option("--flow-iterations", c.deform.flow_options.iterations,
+                  "Outer iterations of the planarity flow at most")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--flow-growth", c.deform.flow_options.growth,
+                  "Growth factor of the planarity flow's attraction weight per iteration")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0001, 100.0));
+  sub->add_option("--straighten", c.straighten_moves,
+                  "After the repair, at most this many local relabellings removing turning points of the chart "
+                  "boundaries (chains running backwards along their polycube edge's axis; 0: none)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   sub->add_option("--estimate-rounds", c.estimate_rounds,
                   "Before each deformation, while the fast polycube estimate folds triangles, penalize their labels "
                   "and label again, at most this many times")

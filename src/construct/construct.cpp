@@ -3,6 +3,7 @@
 
 #include "construct/labeling_check.h"
 #include "construct/polycube_estimate.h"
+#include "construct/turning_points.h"
 #include "core/errors.h"
 #include "core/log.h"
 #include "core/topology.h"
@@ -64,7 +65,8 @@ struct SteeredLabeling {
 };
 
 SteeredLabeling steered_labeling(const core::TriMesh& s, const std::vector<std::vector<int>>& vertex_tris,
-                                 LabelingOptions& lopt, const ConstructOptions& o, ConstructTimes& seconds) {
+                                 const std::vector<core::Vec3>& shape, LabelingOptions& lopt, const ConstructOptions& o,
+                                 ConstructTimes& seconds) {
   auto& log = core::logger();
   SteeredLabeling best;
   for (int round = 0; round <= o.estimate_rounds; ++round) {
@@ -86,6 +88,15 @@ SteeredLabeling steered_labeling(const core::TriMesh& s, const std::vector<std::
         log.info("construct: unfolding the labeling: {} move(s), estimate folds {} -> {} triangles", un.moves,
                  un.folded_before, un.folded_after);
         rep.labels = std::move(un.labels);
+        rep.check = check_labeling(s, rep.labels);
+      }
+    }
+    if (o.straighten_moves > 0) {
+      StraightenResult st = straighten_boundaries(s, shape, rep.labels, o.straighten_moves);
+      if (st.moves > 0) {
+        log.info("construct: straightening chart boundaries: {} move(s), backward steps {} -> {} (length {:.3g} -> {:.3g})",
+                 st.moves, st.steps_before, st.steps_after, st.backward_before, st.backward_after);
+        rep.labels = std::move(st.labels);
         rep.check = check_labeling(s, rep.labels);
       }
     }
@@ -180,6 +191,10 @@ ConstructResult construct_from_prepared(const core::TetMesh& input, const Constr
                pre.iterations, pre.misalignment_before, pre.misalignment_after, pre.inverted, pre.seconds);
     }
     const std::vector<core::Vec3>* start = po.predeform.iterations > 0 ? &pre.points : nullptr;
+    // The surface the chart boundaries are straightened on: the pre-deformed one when there is.
+    std::vector<core::Vec3> shape = bnd.surface.points;
+    if (start)
+      for (std::size_t i = 0; i < shape.size(); ++i) shape[i] = pre.points[bnd.vertex_map[i]];
     for (std::size_t fi = 0; fi < factors.size() && !done && attempts < o.max_attempts; ++fi) {
       LabelingOptions lopt = o.labeling;
       lopt.compactness *= factors[fi];
@@ -194,7 +209,7 @@ ConstructResult construct_from_prepared(const core::TetMesh& input, const Constr
           break;
         }
         ++attempts;
-        const SteeredLabeling sl = steered_labeling(bnd.surface, vertex_tris, lopt, po, res.seconds);
+        const SteeredLabeling sl = steered_labeling(bnd.surface, vertex_tris, shape, lopt, po, res.seconds);
         const RepairResult& rep = sl.repair;
         res.repair_moves = rep.moves;
         const std::string what = fmt::format("{}compactness {:.3g}{}", pass == 1 ? "pre-deformed, " : "", lopt.compactness,

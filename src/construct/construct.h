@@ -54,6 +54,10 @@ struct ConstructOptions {
   //! polycube estimate (unfold_labeling(); 0: none). Off by default: on fandisk it trades one
   //! certified map for a failing one; kept as an option to study.
   int unfold_moves = 0;
+  //! After the repair, at most this many local relabellings that remove backward steps of the
+  //! chart boundaries (turning_points.h), measured on the pre-deformed surface when there is
+  //! one (0: none).
+  int straighten_moves = 0;
   int relabel_ring = 2;             //!< vertex rings around the failures that are penalized
   double relabel_penalty = 1.0;     //!< added per round, in units of a 90° misfit
   //! Surface inputs: when TetGen's mesh (without a volume bound) has fewer tets than this, the

@@ -1,5 +1,6 @@
 //! Polycube deformation (see deform.h).
 #include "construct/deform.h"
+#include "construct/planarity_flow.h"
 
 #include "core/disjoint_sets.h"
 #include "core/errors.h"
@@ -544,9 +545,47 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
     for (int j = 0; j < cv.num_groups; ++j) y[j] /= count[j];
   }
 
-  // 3. As-rigid-as-possible least squares under the chart constraints: minimize
-  //    sum_t w_t |J_t - R_t|² with R_t the rotation closest to the current J_t.
-  if (o.arap_iterations > 0) {
+  // 3. First polycube: the foldover-free planarity flow (planarity_flow.h), snapped onto exact
+  //    chart planes; or as-rigid-as-possible least squares under the chart constraints:
+  //    minimize sum_t w_t |J_t - R_t|² with R_t the rotation closest to the current J_t.
+  if (o.flow) {
+    double h = 0;  // ghost height, as in step 4
+    if (o.ghost_height > 0) {
+      double sum = 0;
+      for (const Tri& t : lb.tris)
+        for (int e = 0; e < 3; ++e) sum += (mesh.points[t[e]] - mesh.points[t[(e + 1) % 3]]).norm();
+      h = o.ghost_height * sum / std::max<std::size_t>(1, 3 * lb.tris.size());
+    }
+    const PlanarityFlowResult fr =
+        planarity_flow(mesh, X0, cv.vertex_group, cv.num_groups, lb.tris, lb.labels, h, o.flow_options);
+    y.setZero();
+    std::vector<double> count(static_cast<std::size_t>(cv.num_groups), 0.0);
+    for (int v = 0; v < nv; ++v)
+      for (int d = 0; d < 3; ++d) {
+        const int j = var[3 * static_cast<std::size_t>(v) + d];
+        y[j] += fr.points[v][d];
+        if (j < cv.num_groups) count[j] += 1.0;
+      }
+    for (int j = 0; j < cv.num_groups; ++j) y[j] /= count[j];
+    res.flow_iterations = fr.iterations;
+    res.flow_residual = fr.residual;
+    for (const auto& c : mesh.cells) {
+      Vec3 p[4];
+      for (int i = 0; i < 4; ++i)
+        for (int d = 0; d < 3; ++d) p[i][d] = y[var[3 * static_cast<std::size_t>(c[i]) + d]];
+      res.inverted_after_linear += (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])) <= 0;
+    }
+    int facing_away = 0;
+    for (std::size_t f = 0; f < lb.tris.size(); ++f) {
+      Vec3 p[3];
+      for (int i = 0; i < 3; ++i)
+        for (int d = 0; d < 3; ++d) p[i][d] = y[var[3 * static_cast<std::size_t>(lb.tris[f][i]) + d]];
+      facing_away += (p[1] - p[0]).cross(p[2] - p[0])[lb.labels[f] / 2] * (lb.labels[f] % 2 == 0 ? 1.0 : -1.0) <= 0;
+    }
+    core::logger().info("deform: planarity flow: {} iterations, plane residual {:.3g} edge lengths, {} inverted "
+                        "({} tets inverted and {} boundary triangles facing away after the snap), {:.2f} s",
+                        fr.iterations, fr.residual, fr.inverted, res.inverted_after_linear, facing_away, fr.seconds);
+  } else if (o.arap_iterations > 0) {
     const solve::TetElements el = solve::reference_elements(mesh.points, mesh.cells);
     const solve::LinearReduction R = solve::index_reduction(var, nvar, Eigen::VectorXd::Zero(3 * nv));
     std::vector<Eigen::Triplet<double>> trip;
@@ -613,7 +652,9 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
   uo.max_iterations = o.max_iterations;
   uo.newton_steps = o.newton_steps;
   uo.volume_weight = o.volume_weight;
-  uo.initial_epsilon = o.initial_epsilon;
+  // After the flow the map is almost untangled: a large ε would undo it (ε's rule raises it
+  // again where a tet is still inverted).
+  uo.initial_epsilon = o.flow ? o.flow_options.snap_epsilon : o.initial_epsilon;
   uo.tolerance = o.tolerance;
   uo.min_det_target = o.min_det;
   uo.stall_min_det_rise = o.stall_min_det_rise;

@@ -24,6 +24,7 @@
 //! The polycube coordinate of a chart vertex along the chart's axis equals the chart's unknown
 //! bit for bit.
 
+#include "construct/planarity_flow.h"
 #include "core/errors.h"
 #include "core/types.h"
 #include "solve/untangle.h"
@@ -60,6 +61,10 @@ struct DeformOptions {
   //! keep the boundary from folding over itself), as a fraction of the mean boundary edge
   //! length; 0 = no ghost tets.
   double ghost_height = 0.5;
+  //! First polycube by the foldover-free planarity flow (planarity_flow.h) instead of the
+  //! as-rigid-as-possible least squares.
+  bool flow = false;
+  PlanarityFlowOptions flow_options;
 };
 
 //! Result of deform_to_polycube().
@@ -77,6 +82,8 @@ struct DeformResult {
   int refined_edges = 0;                    //!< edges split by the local refinement of step 4
   solve::UntangleResult untangle;           //!< the elliptic optimization's report
   int inverted_after_linear = 0;            //!< tets inverted after the linear step
+  int flow_iterations = 0;                  //!< outer iterations of the planarity flow (0: ARAP)
+  double flow_residual = 0;                 //!< its final plane residual (local edge lengths)
   double seconds_linear = 0;                //!< time of steps 1–3
   double seconds_untangle = 0;              //!< time of step 4
 };

@@ -199,7 +199,7 @@ Stats evaluate(const TetElements& el, const std::vector<Attraction>& attr, const
     total.inverted += s.inverted;
   }
   for (const Attraction& a : attr)
-    total.energy += a.weight * (x.segment<3>(3 * a.vertex) - a.target).squaredNorm();
+    total.energy += a.weight * (x.segment<3>(3 * a.vertex) - a.target).cwiseAbs2().dot(a.axis_weights);
   return total;
 }
 
@@ -422,14 +422,15 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
       }
       for (std::size_t k = 0; k < attractions.size(); ++k) {
         const Attraction& at = attractions[k];
-        const Eigen::Vector3d ga = 2.0 * at.weight * (x.segment<3>(3 * at.vertex) - at.target);
+        const Eigen::Vector3d ga = 2.0 * at.weight * (x.segment<3>(3 * at.vertex) - at.target).cwiseProduct(at.axis_weights);
         int s = A.attr_slot_offset[k];
         for (int p = A.attr_offset[k]; p < A.attr_offset[k + 1]; ++p) {
           const Entry& ep = A.attr_entries[p];
           g[ep.col] += ep.coef * ga[ep.local];
           for (int q = A.attr_offset[k]; q < A.attr_offset[k + 1]; ++q) {
             const Entry& eq = A.attr_entries[q];
-            if (ep.col <= eq.col) hv[A.attr_slots[s++]] += ep.local == eq.local ? 2.0 * at.weight * ep.coef * eq.coef : 0.0;
+            if (ep.col <= eq.col)
+              hv[A.attr_slots[s++]] += ep.local == eq.local ? 2.0 * at.weight * at.axis_weights[ep.local] * ep.coef * eq.coef : 0.0;
           }
         }
       }

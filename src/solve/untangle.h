@@ -80,11 +80,14 @@ LinearReduction identity_reduction(int num_points);
 Eigen::VectorXd flatten(const std::vector<core::Vec3>& points);
 std::vector<core::Vec3> unflatten(const Eigen::VectorXd& x);
 
-//! Quadratic attraction ω ||x_v − p||² of one vertex to a target point.
+//! Quadratic attraction ω ||x_v − p||² of one vertex to a target point (per-axis factors optional).
 struct Attraction {
   int vertex = -1;
   core::Vec3 target = core::Vec3::Zero();
   double weight = 0.0;  //!< ω, in energy per squared length (elements' energy ~ weight ~ volume)
+  //! Per-coordinate factors of ω: the term is ω Σ_d axis_weights_d (x_{v,d} − p_d)², so a zero
+  //! factor leaves that coordinate free (e.g. attraction to a plane along one axis only).
+  core::Vec3 axis_weights = core::Vec3::Ones();
 };
 
 //! How untangle() solves each Newton system.

@@ -325,6 +325,32 @@ TEST(Deform, SphereLikeShapeIsCertified) {
   EXPECT_LT(c.dist.isometric.max, 5.0);
 }
 
+TEST(Deform, PlanarityFlowGivesACertifiedSphere) {
+  // The same sphere-like shape with the planarity flow as the first polycube: the flow never
+  // inverts a tet, and after the snap and the untangling the map is certified.
+  core::TriMesh s = cube_surface(8, 2.0);
+  for (Vec3& p : s.points) p = (p - Vec3(1, 1, 1)).normalized() * 10.0;
+  const auto tr = construct::tetrahedralize(s);
+  std::vector<core::Tri> tris;
+  std::vector<int> labels;
+  normal_labels(tr.mesh, tris, labels);
+  core::TriMesh surf;
+  surf.points = tr.mesh.points;
+  for (const auto& t : tris) surf.cells.push_back(t);
+  if (!construct::check_labeling(surf, labels).valid()) {
+    const auto rep = construct::repair_labeling(surf, labels);
+    ASSERT_TRUE(rep.valid()) << "labeling repair failed on the sphere fixture";
+    labels = rep.labels;
+  }
+  construct::DeformOptions o;
+  o.flow = true;
+  const Constructed c = deform_and_certify(tr.mesh, tris, labels, o);
+  EXPECT_TRUE(c.cert.certified()) << c.cert.reason();
+  EXPECT_GT(c.def.flow_iterations, 0);
+  EXPECT_LE(c.def.flow_residual, 0.05);
+  EXPECT_EQ(c.dist.invalid, 0);
+}
+
 //! Number of boundary triangles of label l at corner vertex v, for every (corner, chart).
 std::vector<int> corner_fans(const std::vector<core::Tri>& tris, const std::vector<int>& labels) {
   std::map<int, std::array<int, 6>> at;

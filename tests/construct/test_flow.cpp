@@ -1,0 +1,182 @@
+//! Tests of the planarity flow (construct/planarity_flow.h) and of the chart-boundary turning
+//! points (construct/turning_points.h).
+#include "construct/labeling.h"
+#include "construct/labeling_check.h"
+#include "construct/labeling_repair.h"
+#include "construct/planarity_flow.h"
+#include "construct/tetrahedralize.h"
+#include "construct/turning_points.h"
+#include "construct/shapes.h"
+#include "core/errors.h"
+#include "core/fixtures.h"
+#include "core/polycube_map.h"
+#include "core/topology.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace polycube {
+namespace {
+
+using core::Vec3;
+
+//! Boundary triangles (volume indices, outward) of a tet mesh and labels from their normals.
+void normal_labels(const core::TetMesh& mesh, const std::vector<Vec3>& pts, std::vector<core::Tri>& tris,
+                   std::vector<int>& labels) {
+  const core::TetBoundary b = core::boundary(mesh);
+  tris.clear();
+  labels.clear();
+  for (const auto& s : b.surface.cells) {
+    const core::Tri t{b.vertex_map[s[0]], b.vertex_map[s[1]], b.vertex_map[s[2]]};
+    tris.push_back(t);
+    labels.push_back(core::dominant_axis_label((pts[t[1]] - pts[t[0]]).cross(pts[t[2]] - pts[t[0]])));
+  }
+}
+
+double det(const std::vector<Vec3>& p, const core::Tet& c) {
+  return (p[c[1]] - p[c[0]]).dot((p[c[2]] - p[c[0]]).cross(p[c[3]] - p[c[0]]));
+}
+
+TEST(PlanarityFlow, NoisyBoxFlowsOntoPlanesWithoutFolding) {
+  // A box tet mesh whose boundary vertices are pushed off their faces by noise of a fifth of an
+  // edge: the flow, started from the noisy positions as the reference, must bring every face's
+  // vertices back onto one plane per face without inverting a tet.
+  const auto tr = construct::tetrahedralize(test::make_box(10, 6, 4, 5));
+  core::TetMesh mesh = tr.mesh;
+  std::vector<core::Tri> tris;
+  std::vector<int> labels;
+  normal_labels(mesh, mesh.points, tris, labels);
+  const int nv = mesh.num_points();
+  // One chart group per label (a box's six faces): group of (v, axis).
+  std::vector<int> group(3 * static_cast<std::size_t>(nv), -1);
+  for (std::size_t f = 0; f < tris.size(); ++f)
+    for (int v : tris[f]) group[3 * static_cast<std::size_t>(v) + labels[f] / 2] = labels[f];
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-0.4, 0.4);
+  std::vector<char> on_boundary(static_cast<std::size_t>(nv), 0);
+  for (const auto& t : tris)
+    for (int v : t) on_boundary[v] = 1;
+  for (int v = 0; v < nv; ++v)
+    if (on_boundary[v])
+      for (int d = 0; d < 3; ++d)
+        if (group[3 * static_cast<std::size_t>(v) + d] >= 0) mesh.points[v][d] += u(rng);
+  for (const auto& c : mesh.cells) ASSERT_GT(det(mesh.points, c), 0.0) << "fixture: noise inverted a tet";
+  construct::PlanarityFlowOptions o;
+  o.iterations = 60;
+  const auto r = construct::planarity_flow(mesh, mesh.points, group, 6, tris, labels, 0.5, o);
+  ASSERT_EQ(r.points.size(), mesh.points.size());
+  EXPECT_EQ(r.inverted, 0);
+  EXPECT_LE(r.residual, o.tolerance);
+  for (const auto& c : mesh.cells) EXPECT_GT(det(r.points, c), 0.0);
+  // Independently: each face's coordinate spread, against the longest edge of the mesh (the
+  // residual is in local mean edge lengths).
+  double longest = 0;
+  for (const auto& c : mesh.cells)
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (mesh.points[c[i]] - mesh.points[c[j]]).norm());
+  for (int g = 0; g < 6; ++g) {
+    double lo = 1e300, hi = -1e300;
+    for (int v = 0; v < nv; ++v)
+      if (group[3 * static_cast<std::size_t>(v) + g / 2] == g) {
+        lo = std::min(lo, r.points[v][g / 2]);
+        hi = std::max(hi, r.points[v][g / 2]);
+      }
+    EXPECT_LE(hi - lo, 2.0 * o.tolerance * longest) << "face " << g;
+    EXPECT_LE(lo, hi) << "face " << g << " has no vertex";
+  }
+  // Every boundary triangle faces its label (the ghost tets keep the boundary unfolded).
+  for (std::size_t f = 0; f < tris.size(); ++f) {
+    const auto& t = tris[f];
+    const Vec3 n = (r.points[t[1]] - r.points[t[0]]).cross(r.points[t[2]] - r.points[t[0]]);
+    EXPECT_GT(n.dot(construct::label_direction(labels[f])), 0.0) << "triangle " << f;
+  }
+  // Deterministic.
+  const auto again = construct::planarity_flow(mesh, mesh.points, group, 6, tris, labels, 0.5, o);
+  EXPECT_EQ(again.points, r.points);
+}
+
+TEST(PlanarityFlow, RejectsMismatchedSizes) {
+  const auto tr = construct::tetrahedralize(test::make_box(1, 1, 1, 1));
+  std::vector<int> group(3, -1);
+  EXPECT_THROW(construct::planarity_flow(tr.mesh, tr.mesh.points, group, 0, {}, {}, 0.0), core::InputError);
+}
+
+//! A box surface, labels from its normals.
+struct LabeledBox {
+  core::TriMesh surface;
+  std::vector<int> labels;
+};
+LabeledBox labeled_box(int n) {
+  LabeledBox b;
+  b.surface = test::make_box(1, 1, 1, n);
+  for (const auto& t : b.surface.cells) {
+    const auto& p = b.surface.points;
+    b.labels.push_back(core::dominant_axis_label((p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]])));
+  }
+  return b;
+}
+
+TEST(TurningPoints, StraightBoxEdgesHaveNone) {
+  const LabeledBox b = labeled_box(4);
+  const auto t = construct::boundary_turning(b.surface, b.surface.points, b.labels);
+  EXPECT_EQ(t.chains, 12);
+  EXPECT_TRUE(t.steps.empty());
+  EXPECT_EQ(t.backward_length, 0.0);
+}
+
+TEST(TurningPoints, PlantedBackwardStepIsMeasured) {
+  // Move one vertex in the middle of a box edge past its neighbour along the edge's axis: the
+  // chain now steps back by exactly the overshoot.
+  const LabeledBox b = labeled_box(4);
+  std::vector<Vec3> p = b.surface.points;
+  // The edge x = 1, z = 1 runs along y; its vertices are at y = 0, 0.25, ..., 1.
+  int mid = -1;
+  for (int v = 0; v < b.surface.num_points(); ++v)
+    if (std::abs(p[v].x() - 1) < 1e-12 && std::abs(p[v].z() - 1) < 1e-12 && std::abs(p[v].y() - 0.5) < 1e-12) mid = v;
+  ASSERT_GE(mid, 0);
+  p[mid].y() = 0.8;  // past the vertex at 0.75: steps 0.25 -> 0.8 -> 0.75 -> 1
+  const auto t = construct::boundary_turning(b.surface, p, b.labels);
+  EXPECT_EQ(t.chains, 12);
+  ASSERT_EQ(t.steps.size(), 1u);
+  EXPECT_NEAR(t.steps[0].length, 0.05, 1e-12);
+  EXPECT_NEAR(t.backward_length, 0.05, 1e-12);
+  EXPECT_EQ(t.steps[0].from, mid);
+  const auto& tri = b.surface.cells;
+  for (int f : {t.steps[0].left, t.steps[0].right}) {
+    const auto& c = tri[f];
+    EXPECT_TRUE(std::find(c.begin(), c.end(), mid) != c.end()) << "the step's triangles hold its vertices";
+  }
+  EXPECT_NE(b.labels[t.steps[0].left], b.labels[t.steps[0].right]);
+}
+
+TEST(TurningPoints, StraighteningKeepsTheLabelingValidAndNeverRaisesTheBackwardLength) {
+  // A sphere labeled by its normals (repaired): chart boundaries wander.
+  const core::TriMesh s = test::make_sphere(1.0, 24, 48);
+  std::vector<int> labels;
+  for (const auto& t : s.cells)
+    labels.push_back(core::dominant_axis_label((s.points[t[1]] - s.points[t[0]]).cross(s.points[t[2]] - s.points[t[0]])));
+  const auto rep = construct::repair_labeling(s, labels);
+  ASSERT_TRUE(rep.valid());
+  // Measure on a wavy copy so that the boundaries have backward steps to remove.
+  std::vector<Vec3> p = s.points;
+  for (Vec3& q : p) q += 0.1 * Vec3(std::sin(9 * q.y()), std::sin(9 * q.z()), std::sin(9 * q.x()));
+  const auto before = construct::boundary_turning(s, p, rep.labels);
+  ASSERT_FALSE(before.steps.empty()) << "fixture: no backward step to remove";
+  const auto r = construct::straighten_boundaries(s, p, rep.labels, 20);
+  EXPECT_TRUE(construct::check_labeling(s, r.labels).valid());
+  EXPECT_NEAR(r.backward_before, before.backward_length, 1e-12);
+  EXPECT_EQ(r.steps_before, static_cast<int>(before.steps.size()));
+  const auto after = construct::boundary_turning(s, p, r.labels);
+  EXPECT_NEAR(r.backward_after, after.backward_length, 1e-12);
+  EXPECT_EQ(r.steps_after, static_cast<int>(after.steps.size()));
+  EXPECT_LE(r.backward_after, r.backward_before);
+  EXPECT_GT(r.moves, 0);
+  EXPECT_LT(r.backward_after, r.backward_before);
+  EXPECT_EQ(r.labels.size(), labels.size());
+}
+
+}  // namespace
+}  // namespace polycube
