@@ -1,5 +1,7 @@
 //! Polycube deformation (see deform.h).
 #include "construct/deform.h"
+#include "construct/corner_fans.h"
+#include "construct/labeling.h"
 #include "construct/planarity_flow.h"
 
 #include "core/disjoint_sets.h"
@@ -394,12 +396,26 @@ solve::UntangleResult untangle_with_ghosts(const core::TetMesh& mesh, const Labe
   return ur;
 }
 
-//! Local untangling (after the global optimization left a few tets inverted): only the
-//! coordinates within `rings` tet rings of the inverted tets move, chart coordinates stay at
-//! their current value, and ε starts afresh (large ε is safe here, the fixed surroundings keep
-//! the region from shrinking). Returns the number of tets inverted in the whole mesh afterwards.
-int untangle_locally(const core::TetMesh& mesh, const std::vector<int>& vertex_group, std::vector<Vec3>& P,
-                     int rings, const solve::UntangleOptions& base) {
+//! Failures of a polycube P: tets with det <= 0 and boundary triangles facing away from their label.
+int failures(const core::TetMesh& mesh, const LabeledBoundary& lb, const std::vector<Vec3>& P) {
+  int n = 0;
+  for (const auto& c : mesh.cells) n += !((P[c[1]] - P[c[0]]).dot((P[c[2]] - P[c[0]]).cross(P[c[3]] - P[c[0]])) > 0);
+  for (std::size_t f = 0; f < lb.tris.size(); ++f) {
+    const Tri& t = lb.tris[f];
+    n += !((P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]).dot(label_direction(lb.labels[f])) > 0);
+  }
+  return n;
+}
+
+//! Local untangling (after the global optimization left a few failures): only the coordinates
+//! within `rings` tet rings of the failures (inverted tets, boundary triangles facing away) and
+//! of the `seeds` move, chart coordinates stay at their current value, and ε starts afresh
+//! (large ε is safe here, the fixed surroundings keep the region from shrinking). The boundary
+//! triangles of the region carry ghost tets of height h (as in untangle_with_ghosts; none when
+//! h is 0). Returns the number of failures in the whole mesh afterwards (never more than before).
+int untangle_locally(const core::TetMesh& mesh, const LabeledBoundary& lb, const std::vector<int>& vertex_group,
+                     std::vector<Vec3>& P, int rings, const solve::UntangleOptions& base, double h,
+                     const std::vector<int>& seeds = {}) {
   const int nv = mesh.num_points();
   auto det_of = [&](const core::Tet& c) {
     return (P[c[1]] - P[c[0]]).dot((P[c[2]] - P[c[0]]).cross(P[c[3]] - P[c[0]]));
@@ -408,6 +424,12 @@ int untangle_locally(const core::TetMesh& mesh, const std::vector<int>& vertex_g
   for (const auto& c : mesh.cells)
     if (!(det_of(c) > 0))
       for (int v : c) in[v] = 1;
+  for (std::size_t f = 0; f < lb.tris.size(); ++f) {
+    const Tri& t = lb.tris[f];
+    if (!((P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]).dot(label_direction(lb.labels[f])) > 0))
+      for (int v : t) in[v] = 1;
+  }
+  for (int v : seeds) in[v] = 1;
   std::vector<std::vector<int>> vc(static_cast<std::size_t>(nv));
   for (std::size_t c = 0; c < mesh.cells.size(); ++c)
     for (int v : mesh.cells[c]) vc[v].push_back(static_cast<int>(c));
@@ -419,17 +441,42 @@ int untangle_locally(const core::TetMesh& mesh, const std::vector<int>& vertex_g
           for (int w : mesh.cells[c]) next[w] = 1;
     in.swap(next);
   }
-  std::vector<int> var(3 * static_cast<std::size_t>(nv), -1);
+  std::vector<core::Tet> local;
+  for (const auto& c : mesh.cells)
+    if (in[c[0]] || in[c[1]] || in[c[2]] || in[c[3]]) local.push_back(c);
+  // Ghost tets of the region's boundary triangles: apex at h above the (fixed) chart plane.
+  std::vector<Vec3> ref = mesh.points;
+  std::vector<Vec3> ghost_start;
+  std::vector<int> ghost_axis;
+  if (h > 0)
+    for (std::size_t f = 0; f < lb.tris.size(); ++f) {
+      const Tri& t = lb.tris[f];
+      if (!in[t[0]] && !in[t[1]] && !in[t[2]]) continue;
+      const Vec3& m0 = mesh.points[t[0]];
+      const Vec3 n = (mesh.points[t[1]] - m0).cross(mesh.points[t[2]] - m0).normalized();
+      ref.push_back((m0 + mesh.points[t[1]] + mesh.points[t[2]]) / 3.0 + h * n);
+      local.push_back({t[0], t[1], t[2], static_cast<int>(ref.size()) - 1});
+      const int a = lb.labels[f] / 2;
+      Vec3 apex = (P[t[0]] + P[t[1]] + P[t[2]]) / 3.0;
+      apex[a] = P[t[0]][a] + (lb.labels[f] % 2 == 0 ? h : -h);
+      ghost_start.push_back(apex);
+      ghost_axis.push_back(a);
+    }
+  const int np = static_cast<int>(ref.size());
+  std::vector<int> var(3 * static_cast<std::size_t>(np), -1);
   int n = 0;
   for (int v = 0; v < nv; ++v)
     if (in[v])
       for (int d = 0; d < 3; ++d)
         if (vertex_group[3 * static_cast<std::size_t>(v) + d] < 0) var[3 * static_cast<std::size_t>(v) + d] = n++;
-  std::vector<core::Tet> local;
-  for (const auto& c : mesh.cells)
-    if (in[c[0]] || in[c[1]] || in[c[2]] || in[c[3]]) local.push_back(c);
-  Eigen::VectorXd fixed(3 * static_cast<Eigen::Index>(nv));
+  Eigen::VectorXd fixed(3 * static_cast<Eigen::Index>(np));
   for (int v = 0; v < nv; ++v) fixed.segment<3>(3 * v) = P[v];
+  for (std::size_t g = 0; g < ghost_start.size(); ++g) {
+    const int v = nv + static_cast<int>(g);
+    fixed.segment<3>(3 * v) = ghost_start[g];
+    for (int d = 0; d < 3; ++d)
+      if (d != ghost_axis[g]) var[3 * static_cast<std::size_t>(v) + d] = n++;
+  }
   const solve::LinearReduction R = solve::index_reduction(var, n, fixed);
   Eigen::VectorXd y(n);
   for (std::size_t i = 0; i < var.size(); ++i)
@@ -437,24 +484,19 @@ int untangle_locally(const core::TetMesh& mesh, const std::vector<int>& vertex_g
   solve::UntangleOptions uo = base;
   uo.initial_epsilon = 1.0;
   uo.max_iterations = std::max(base.max_iterations, 200);
-  const solve::UntangleResult ur = solve::untangle(solve::reference_elements(mesh.points, local), R, y, uo);
+  const solve::UntangleResult ur = solve::untangle(solve::reference_elements(ref, local), R, y, uo);
   const Eigen::VectorXd x = R.apply(y);
   std::vector<Vec3> Q = P;
   for (int v = 0; v < nv; ++v) Q[v] = x.segment<3>(3 * v);
-  int before = 0, after = 0;
-  for (const auto& c : mesh.cells) before += !(det_of(c) > 0);
-  std::swap(P, Q);
-  for (const auto& c : mesh.cells) after += !(det_of(c) > 0);
-  if (after > before) {  // never make it worse
-    std::swap(P, Q);
-    after = before;
-  }
-  core::logger().debug("deform: local untangling ({} rings, {} tets, {} variables): {} -> {} inverted", rings,
-                       local.size(), n, before, after);
+  const int before = failures(mesh, lb, P);
+  int after = failures(mesh, lb, Q);
+  if (after <= before) std::swap(P, Q);  // never make it worse
+  else after = before;
+  core::logger().debug("deform: local untangling ({} rings, {} tets with {} ghosts, {} variables): {} -> {} failures",
+                       rings, local.size(), ghost_start.size(), n, before, after);
   (void)ur;
   return after;
 }
-
 
 }  // namespace
 
@@ -706,8 +748,29 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
       // A few tets left: untangle locally with a fresh ε, in growing regions, then go back
       // through the global optimizer (from a valid state it stays valid) to spread the
       // distortion, and take its verdict.
+      // Concave corners whose chart fan stayed swept the short way: place the fan on its
+      // long sweep first (corner_fans.h), then untangle around it.
+      // First the plain local untangling; when it stays stuck, place the chart fans that stayed
+      // flipped at concave corners on their long sweep (corner_fans.h) and untangle around them.
+      std::vector<int> seeds;
       for (int rings : {2, 4, 8}) {
-        if (untangle_locally(mesh, cv.vertex_group, P, rings, uo) == 0) {
+        bool fixed = untangle_locally(mesh, lb, cv.vertex_group, P, rings, uo, ghost_h, seeds) == 0;
+        if (!fixed && o.reopen_fans) {
+          const int before = failures(mesh, lb, P);
+          std::vector<Vec3> trial = P;
+          const ReopenedFans rf = reopen_flipped_fans(lb.tris, lb.labels, trial);
+          if (rf.fans > 0) {
+            core::logger().debug("deform: {} flipped corner fans placed on their long sweep ({} vertices)", rf.fans,
+                                 rf.vertices.size());
+            res.reopened_fans += rf.fans;
+            P.swap(trial);
+            seeds.insert(seeds.end(), rf.vertices.begin(), rf.vertices.end());
+            const int after = untangle_locally(mesh, lb, cv.vertex_group, P, rings, uo, ghost_h, seeds);
+            if (after > before) P.swap(trial);  // compare with the state before the fans moved
+            fixed = after == 0;
+          }
+        }
+        if (fixed) {
           merge(optimize());
           break;
         }

@@ -64,6 +64,9 @@ struct DeformOptions {
   //! First polycube by the foldover-free planarity flow (planarity_flow.h) instead of the
   //! as-rigid-as-possible least squares.
   bool flow = false;
+  //! When the untangling leaves failures, first place the chart fans that stayed flipped at
+  //! concave corners on their long sweep (corner_fans.h), then untangle locally.
+  bool reopen_fans = true;
   PlanarityFlowOptions flow_options;
 };
 
@@ -80,6 +83,7 @@ struct DeformResult {
   int split_edges = 0;                      //!< boundary edges split by step 2
   int split_fan_edges = 0;                  //!< boundary edges split to widen corner fans
   int refined_edges = 0;                    //!< edges split by the local refinement of step 4
+  int reopened_fans = 0;                    //!< flipped corner fans placed on their long sweep
   solve::UntangleResult untangle;           //!< the elliptic optimization's report
   int inverted_after_linear = 0;            //!< tets inverted after the linear step
   int flow_iterations = 0;                  //!< outer iterations of the planarity flow (0: ARAP)

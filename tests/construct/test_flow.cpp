@@ -1,5 +1,6 @@
-//! Tests of the planarity flow (construct/planarity_flow.h) and of the chart-boundary turning
-//! points (construct/turning_points.h).
+//! Tests of the planarity flow (construct/planarity_flow.h), the chart-boundary turning points
+//! (construct/turning_points.h) and the reopening of flipped corner fans (construct/corner_fans.h).
+#include "construct/corner_fans.h"
 #include "construct/labeling.h"
 #include "construct/labeling_check.h"
 #include "construct/labeling_repair.h"
@@ -176,6 +177,49 @@ TEST(TurningPoints, StraighteningKeepsTheLabelingValidAndNeverRaisesTheBackwardL
   EXPECT_GT(r.moves, 0);
   EXPECT_LT(r.backward_after, r.backward_before);
   EXPECT_EQ(r.labels.size(), labels.size());
+}
+
+TEST(CornerFans, FlippedConcaveFanIsPlacedOnItsLongSweep) {
+  // Corner C at the origin; a +Z chart fan of 4 triangles from spoke s0 on +x to s4 on -y, which
+  // must sweep 270 degrees counter-clockwise (a concave corner) but was left on the short,
+  // clockwise 90 degrees: every triangle faces -Z. Two more triangles (+X, +Y) make C a corner.
+  std::vector<Vec3> P{{0, 0, 0}, {1, 0, 0}};
+  const double pi = std::acos(-1.0);
+  for (int i = 1; i <= 3; ++i) P.emplace_back(std::cos(-i * pi / 8), std::sin(-i * pi / 8), 0.0);
+  P.emplace_back(0, -1, 0);                       // s4 = vertex 5
+  P.emplace_back(0, 0, -1);                       // 6, below C (for the side charts)
+  std::vector<core::Tri> tris;
+  std::vector<int> labels;
+  for (int i = 1; i <= 4; ++i) {
+    tris.push_back({0, i, i + 1});
+    labels.push_back(4);
+  }
+  tris.push_back({0, 6, 1});
+  labels.push_back(0);
+  tris.push_back({0, 5, 6});
+  labels.push_back(2);
+  auto faces = [&](const std::vector<Vec3>& Q, int f) {
+    const auto& t = tris[f];
+    return (Q[t[1]] - Q[t[0]]).cross(Q[t[2]] - Q[t[0]]).z() > 0;
+  };
+  for (int f = 0; f < 4; ++f) ASSERT_FALSE(faces(P, f)) << "fixture: the fan must start flipped";
+  std::vector<Vec3> Q = P;
+  const auto r = construct::reopen_flipped_fans(tris, labels, Q);
+  EXPECT_EQ(r.fans, 1);
+  EXPECT_EQ(r.vertices, (std::vector<int>{2, 3, 4}));
+  for (int f = 0; f < 4; ++f) EXPECT_TRUE(faces(Q, f)) << "fan triangle " << f;
+  for (int v : {0, 1, 5, 6}) EXPECT_EQ(Q[v], P[v]) << "vertex " << v << " must stay";
+  for (int i = 1; i <= 3; ++i) {
+    EXPECT_EQ(Q[i + 1].z(), 0.0);                       // stays in the chart plane
+    EXPECT_NEAR(Q[i + 1].head<2>().norm(), 1.0, 1e-12);  // at its distance from the corner
+    const double angle = std::atan2(Q[i + 1].y(), Q[i + 1].x());
+    const double expected = i * 3 * pi / 8;  // 270 degrees in 4 equal steps
+    EXPECT_NEAR(std::remainder(angle - expected, 2 * pi), 0.0, 1e-12) << "spoke " << i;
+  }
+  // A fan that faces its label is left alone.
+  std::vector<Vec3> again = Q;
+  EXPECT_EQ(construct::reopen_flipped_fans(tris, labels, again).fans, 0);
+  EXPECT_EQ(again, Q);
 }
 
 }  // namespace
