@@ -302,24 +302,32 @@ TEST(Deform, BoxIsCertifiedNearIdentity) {
   EXPECT_LT(c.dist.isometric.average, 1.01);
 }
 
-TEST(Deform, SphereLikeShapeIsCertified) {
-  // A cube surface pushed onto a sphere, labeled by its normals, repaired if needed.
-  core::TriMesh s = cube_surface(8, 2.0);
-  for (Vec3& p : s.points) p = (p - Vec3(1, 1, 1)).normalized() * 10.0;
-  const auto tr = construct::tetrahedralize(s);
+//! A cube surface pushed onto a sphere, tetrahedralized, labeled by its normals, repaired.
+struct LabeledSphere {
+  core::TetMesh mesh;
   std::vector<core::Tri> tris;
   std::vector<int> labels;
-  normal_labels(tr.mesh, tris, labels);
+};
+LabeledSphere labeled_sphere() {
+  core::TriMesh s = cube_surface(8, 2.0);
+  for (Vec3& p : s.points) p = (p - Vec3(1, 1, 1)).normalized() * 10.0;
+  LabeledSphere out;
+  out.mesh = construct::tetrahedralize(s).mesh;
+  normal_labels(out.mesh, out.tris, out.labels);
   core::TriMesh surf;
-  surf.points = tr.mesh.points;
-  for (const auto& t : tris) surf.cells.push_back(t);
-  auto check = construct::check_labeling(surf, labels);
-  if (!check.valid()) {
-    const auto rep = construct::repair_labeling(surf, labels);
-    ASSERT_TRUE(rep.valid()) << "labeling repair failed on the sphere fixture";
-    labels = rep.labels;
+  surf.points = out.mesh.points;
+  for (const auto& t : out.tris) surf.cells.push_back(t);
+  if (!construct::check_labeling(surf, out.labels).valid()) {
+    const auto rep = construct::repair_labeling(surf, out.labels);
+    if (!rep.valid()) throw core::SolverError("labeling repair failed on the sphere fixture");
+    out.labels = rep.labels;
   }
-  const Constructed c = deform_and_certify(tr.mesh, tris, labels);
+  return out;
+}
+
+TEST(Deform, SphereLikeShapeIsCertified) {
+  const LabeledSphere sp = labeled_sphere();
+  const Constructed c = deform_and_certify(sp.mesh, sp.tris, sp.labels);
   EXPECT_TRUE(c.cert.certified()) << c.cert.reason();
   EXPECT_EQ(c.dist.invalid, 0);
   EXPECT_LT(c.dist.isometric.max, 5.0);
@@ -328,23 +336,10 @@ TEST(Deform, SphereLikeShapeIsCertified) {
 TEST(Deform, PlanarityFlowGivesACertifiedSphere) {
   // The same sphere-like shape with the planarity flow as the first polycube: the flow never
   // inverts a tet, and after the snap and the untangling the map is certified.
-  core::TriMesh s = cube_surface(8, 2.0);
-  for (Vec3& p : s.points) p = (p - Vec3(1, 1, 1)).normalized() * 10.0;
-  const auto tr = construct::tetrahedralize(s);
-  std::vector<core::Tri> tris;
-  std::vector<int> labels;
-  normal_labels(tr.mesh, tris, labels);
-  core::TriMesh surf;
-  surf.points = tr.mesh.points;
-  for (const auto& t : tris) surf.cells.push_back(t);
-  if (!construct::check_labeling(surf, labels).valid()) {
-    const auto rep = construct::repair_labeling(surf, labels);
-    ASSERT_TRUE(rep.valid()) << "labeling repair failed on the sphere fixture";
-    labels = rep.labels;
-  }
+  const LabeledSphere sp = labeled_sphere();
   construct::DeformOptions o;
   o.flow = true;
-  const Constructed c = deform_and_certify(tr.mesh, tris, labels, o);
+  const Constructed c = deform_and_certify(sp.mesh, sp.tris, sp.labels, o);
   EXPECT_TRUE(c.cert.certified()) << c.cert.reason();
   EXPECT_GT(c.def.flow_iterations, 0);
   EXPECT_LE(c.def.flow_residual, 0.05);

@@ -25,16 +25,15 @@ namespace {
 using core::Vec3;
 
 //! Boundary triangles (volume indices, outward) of a tet mesh and labels from their normals.
-void normal_labels(const core::TetMesh& mesh, const std::vector<Vec3>& pts, std::vector<core::Tri>& tris,
-                   std::vector<int>& labels) {
+std::pair<std::vector<core::Tri>, std::vector<int>> labeled_boundary(const core::TetMesh& mesh) {
   const core::TetBoundary b = core::boundary(mesh);
-  tris.clear();
-  labels.clear();
+  std::pair<std::vector<core::Tri>, std::vector<int>> out;
   for (const auto& s : b.surface.cells) {
-    const core::Tri t{b.vertex_map[s[0]], b.vertex_map[s[1]], b.vertex_map[s[2]]};
-    tris.push_back(t);
-    labels.push_back(core::dominant_axis_label((pts[t[1]] - pts[t[0]]).cross(pts[t[2]] - pts[t[0]])));
+    const auto& p = b.surface.points;
+    out.first.push_back({b.vertex_map[s[0]], b.vertex_map[s[1]], b.vertex_map[s[2]]});
+    out.second.push_back(core::dominant_axis_label((p[s[1]] - p[s[0]]).cross(p[s[2]] - p[s[0]])));
   }
+  return out;
 }
 
 double det(const std::vector<Vec3>& p, const core::Tet& c) {
@@ -47,9 +46,7 @@ TEST(PlanarityFlow, NoisyBoxFlowsOntoPlanesWithoutFolding) {
   // vertices back onto one plane per face without inverting a tet.
   const auto tr = construct::tetrahedralize(test::make_box(10, 6, 4, 5));
   core::TetMesh mesh = tr.mesh;
-  std::vector<core::Tri> tris;
-  std::vector<int> labels;
-  normal_labels(mesh, mesh.points, tris, labels);
+  const auto [tris, labels] = labeled_boundary(mesh);
   const int nv = mesh.num_points();
   // One chart group per label (a box's six faces): group of (v, axis).
   std::vector<int> group(3 * static_cast<std::size_t>(nv), -1);
