@@ -4,8 +4,13 @@
 #include "core/types.h"
 
 #include <cmath>
+#include <algorithm>
+#include <array>
 #include <functional>
+#include <map>
 #include <random>
+#include <utility>
+#include <vector>
 
 namespace polycube::test {
 
@@ -35,6 +40,50 @@ inline core::TriMesh box_surface(double sx = 1, double sy = 1, double sz = 1) {
     t.cells.push_back({f[0], f[2], f[3]});
   }
   return t;
+}
+
+//! The unit sphere as an icosahedron subdivided `levels` times (vertices on the sphere, faces
+//! outward).
+inline core::TriMesh sphere_surface(int levels) {
+  core::TriMesh t;
+  const double g = (1.0 + std::sqrt(5.0)) / 2.0;
+  for (const auto& p : {core::Vec3(-1, g, 0), core::Vec3(1, g, 0), core::Vec3(-1, -g, 0), core::Vec3(1, -g, 0),
+                        core::Vec3(0, -1, g), core::Vec3(0, 1, g), core::Vec3(0, -1, -g), core::Vec3(0, 1, -g),
+                        core::Vec3(g, 0, -1), core::Vec3(g, 0, 1), core::Vec3(-g, 0, -1), core::Vec3(-g, 0, 1)})
+    t.points.push_back(p.normalized());
+  t.cells = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+             {11, 10, 2}, {10, 7, 6}, {7, 1, 8},   {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+             {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int l = 0; l < levels; ++l) {
+    std::map<std::pair<int, int>, int> mid;
+    auto midpoint = [&](int a, int b) {
+      const auto key = std::minmax(a, b);
+      const auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      t.points.push_back((t.points[a] + t.points[b]).normalized());
+      return mid[key] = t.num_points() - 1;
+    };
+    std::vector<std::array<int, 3>> next;
+    for (const auto& f : t.cells) {
+      const int a = midpoint(f[0], f[1]), b = midpoint(f[1], f[2]), c = midpoint(f[2], f[0]);
+      next.insert(next.end(), {{f[0], a, c}, {f[1], b, a}, {f[2], c, b}, {a, b, c}});
+    }
+    t.cells = next;
+  }
+  return t;
+}
+
+//! n by n by n grid of the cube [-1,1]³ mapped into the unit ball by pushing every point out
+//! radially from the max-norm sphere to the Euclidean one (the boundary lands on the sphere).
+//! Its corner hexes have three faces on the sphere, nearly coplanar: a poor scaled Jacobian
+//! the optimizer could raise by pulling their vertices off the surface.
+inline core::HexMesh ball_grid(int n) {
+  core::HexMesh m = box_grid(n, n, n, 2, 2, 2);
+  for (auto& p : m.points) {
+    p -= core::Vec3(1, 1, 1);
+    if (p.norm() > 0) p *= p.lpNorm<Eigen::Infinity>() / p.norm();
+  }
+  return m;
 }
 
 //! Move every point by a seeded uniform random offset of at most `amplitude` per coordinate,
