@@ -117,6 +117,7 @@ struct Problem {
   VertexRoles roles;
   solve::LinearReduction reduction;
   std::vector<solve::Attraction> attractions;
+  std::vector<double> stiffness;  //!< per attraction: weight factor, raised where the vertex drifted
 
   //! Move every attraction target to the closest point of its surface or feature lines.
   //! Put every attracted vertex exactly on its target, except where that would invert a
@@ -158,21 +159,31 @@ struct Problem {
     }
   }
 
-  //! Attraction weights: surface_weight * (weighted reference volume around v) / h_v², the
-  //! hexes' volumes taken with the same multipliers as their corner elements. The quality
-  //! rounds raise the multipliers of the worst hexes; without the same factor on the
-  //! attraction of their vertices, the shape energy of those hexes overpowers the attraction
-  //! and pulls boundary vertices off the target (cube_minus_sphere: a vertex of the worst hex
-  //! a third of an edge length off the cavity after 5 rounds, ×4 each).
-  void set_weights(const core::HexMesh& mesh, const std::vector<double>& size, const std::vector<double>& multiplier,
-                   double surface_weight) {
+  //! Attraction weights: surface_weight * (reference volume around v) / h_v², times each
+  //! attraction's stiffness (1 unless the vertex drifted off the target, see below).
+  void set_weights(const core::HexMesh& mesh, const std::vector<double>& size, double surface_weight) {
     std::vector<double> volume(mesh.points.size(), 0.0);
     for (std::size_t c = 0; c < mesh.cells.size(); ++c)
-      for (int v : mesh.cells[c]) volume[v] += multiplier[c] * size[c] * size[c] * size[c];
-    for (auto& a : attractions) {
+      for (int v : mesh.cells[c]) volume[v] += size[c] * size[c] * size[c];
+    stiffness.resize(attractions.size(), 1.0);
+    for (std::size_t k = 0; k < attractions.size(); ++k) {
+      auto& a = attractions[k];
       const double h = roles.edge_length[a.vertex] > 0 ? roles.edge_length[a.vertex] : 1.0;
-      a.weight = surface_weight * volume[a.vertex] / (h * h);
+      a.weight = surface_weight * stiffness[k] * volume[a.vertex] / (h * h);
     }
+  }
+
+  //! Attractions whose vertex is farther than `limit` local edge lengths or `absolute` from its
+  //! target.
+  [[nodiscard]] std::vector<std::size_t> drifted(const core::HexMesh& mesh, double limit, double absolute) const {
+    std::vector<solve::Attraction> attr = attractions;
+    project(solve::flatten(mesh.points), attr);
+    std::vector<std::size_t> out;
+    for (std::size_t k = 0; k < attr.size(); ++k) {
+      const double h = roles.edge_length[attr[k].vertex] > 0 ? roles.edge_length[attr[k].vertex] : 1.0;
+      if ((mesh.points[attr[k].vertex] - attr[k].target).norm() > std::min(limit * h, absolute)) out.push_back(k);
+    }
+    return out;
   }
 
   void project(const Eigen::VectorXd& x, std::vector<solve::Attraction>& attr) const {
@@ -203,7 +214,7 @@ Problem make_problem(core::HexMesh& mesh, const TargetSurface& target, const std
     const VertexRole r = pb.roles.role[v];
     if (r == VertexRole::Surface || r == VertexRole::Feature) pb.attractions.push_back({v, mesh.points[v], 0.0});
   }
-  pb.set_weights(mesh, size, std::vector<double>(mesh.cells.size(), 1.0), o.surface_weight);
+  pb.set_weights(mesh, size, o.surface_weight);
   pb.project(solve::flatten(mesh.points), pb.attractions);
   return pb;
 }
@@ -246,7 +257,8 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   const auto t0 = Clock::now();
   if (mesh.cells.empty()) throw core::InputError("hex mesh: no hexahedra");
   if (!(o.surface_weight >= 0) || o.untangle_iterations < 0 || o.quality_rounds < 0 || o.quality_iterations < 1 ||
-      !(o.volume_weight > 0) || !(o.feature_angle > 0 && o.feature_angle < 180) || !(o.feature_distance > 0))
+      !(o.volume_weight > 0) || !(o.feature_angle > 0 && o.feature_angle < 180) || !(o.feature_distance > 0) ||
+      !(o.drift_limit > 0) || !(o.drift_diagonal > 0) || o.drift_retries < 0)
     throw core::InputError("optimize: option out of range");
   core::check_indices(mesh);
   for (const Vec3& p : mesh.points)
@@ -299,6 +311,8 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   // (the untangled state's average is not a quality the user asked to keep).
   const double start_average = best.average - (res.untangle.iterations > 0 ? o.average_slack : 0.0);
   std::vector<Vec3> best_points = mesh.points;
+  const std::vector<Vec3> start_points = mesh.points;
+  const double diagonal = core::bounding_box(target_mesh.points).extent().norm();
   for (int round = 0; round < o.quality_rounds; ++round) {
     // Heavier weights on the worst hexes (those within 0.1 of the minimum, at least 1%).
     if (round > 0) {
@@ -308,7 +322,6 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
       const double tau = std::max(sorted[k], best.min + 0.1);
       for (std::size_t c = 0; c < multiplier.size(); ++c)
         if (best.values[c] < tau) multiplier[c] *= 4.0;
-      pb.set_weights(mesh, size, multiplier, o.surface_weight);
     }
     solve::UntangleOptions uo;
     uo.max_iterations = o.quality_iterations;
@@ -338,6 +351,38 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   // Finally put the boundary exactly on the target where that keeps every hex at or above the
   // minimum reached (and inverts nothing).
   pb.snap(mesh, best.min);
+  // The heavier weights of the worst hexes may have pulled some of their boundary vertices off
+  // the target, where the snap cannot put them back without lowering the minimum
+  // (cube_minus_sphere: a vertex of the worst hex, at a concave polycube corner on the sphere
+  // cavity, a third of an edge length off). Stiffen the attraction of those vertices only and
+  // optimize again from the state before the rounds, until none drifts: the surface is a
+  // constraint, the minimum scaled Jacobian the objective.
+  for (int retry = 0; retry < o.drift_retries && res.inverted_corners_before == 0; ++retry) {
+    const std::vector<std::size_t> off = pb.drifted(mesh, o.drift_limit, o.drift_diagonal * diagonal);
+    if (off.empty()) break;
+    for (std::size_t k : off) pb.stiffness[k] *= 16.0;
+    pb.set_weights(mesh, size, o.surface_weight);
+    mesh.points = start_points;
+    solve::UntangleOptions uo;
+    uo.max_iterations = o.quality_iterations * std::max(1, o.quality_rounds);
+    uo.newton_steps = 1;
+    uo.volume_weight = o.volume_weight;
+    uo.initial_epsilon = 1.0;
+    uo.tolerance = 1e-4;
+    uo.stall_iterations = 0;
+    const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o);
+    add(res.quality, r);
+    if (inverted_corners(mesh) > 0) {  // never trade validity for the surface
+      mesh.points = best_points;
+      break;
+    }
+    best = summary(mesh, true);
+    pb.snap(mesh, best.min);
+    best_points = mesh.points;
+    ++res.drift_retries;
+    core::logger().info("optimize: {} boundary vertices drifted off the target; their attraction stiffened: mSJ {:.4f}",
+                        off.size(), best.min);
+  }
   res.quality.seconds = seconds_since(t2);
 
   res.after = summary(mesh, false);

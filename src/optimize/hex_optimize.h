@@ -50,6 +50,15 @@ struct OptimizeOptions {
   //! by truncated conjugate gradients (a factorization grows too costly on large meshes).
   int cholesky_max_variables = 30000;
   int cg_iterations = 100;  //!< CG iterations per Newton step (large meshes)
+  //! After the quality rounds and the final snap, a boundary vertex farther than this many
+  //! local edge lengths from the target gets a 16 times stiffer attraction and the quality
+  //! optimization runs again (at most drift_retries times): the surface is kept as a
+  //! constraint even where leaving it would raise the minimum scaled Jacobian.
+  double drift_limit = 0.25;
+  //! ... or farther than this fraction of the target's bounding-box diagonal (half the
+  //! thesis's Hausdorff bound of 0.9 %, §4.5).
+  double drift_diagonal = 0.0045;
+  int drift_retries = 6;
 };
 
 //! Work of one phase.
@@ -72,6 +81,7 @@ struct OptimizeResult {
   int target_feature_edges = 0;           //!< sharp edges found on the target
   int target_corners = 0;                 //!< corners found on the target
   int rounds_accepted = 0;                //!< quality rounds kept
+  int drift_retries = 0;                  //!< optimizations run again for drifted boundary vertices
   PhaseReport setup, untangle, quality;
   double seconds = 0;  //!< total wall time
 };

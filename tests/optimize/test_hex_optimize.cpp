@@ -104,7 +104,7 @@ TEST(HexOptimize, WorstHexesKeepTheirBoundaryOnACurvedSurface) {
   double worst = 0;
   for (const int v : core::boundary(m).vertex_map)
     worst = std::max(worst, (target.closest_point(m.points[v]) - m.points[v]).norm());
-  EXPECT_LT(worst, 0.05 * h);
+  EXPECT_LT(worst, 0.05 * h) << "retries " << r.drift_retries << " mSJ " << r.after.min;
   EXPECT_LE(quality::hausdorff_distance(m, sphere).relative, 0.009);
   const auto check = optimize::check_foldover(m);
   EXPECT_TRUE(check.ok()) << check.reason();
