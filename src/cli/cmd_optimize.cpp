@@ -129,6 +129,12 @@ void register_optimize(CLI::App& app) {
   sub->add_option("--surface-weight", oo.surface_weight, "Strength of the attraction of the boundary to the target")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  sub->add_option("--max-drift", oo.drift_diagonal,
+                  "Boundary vertices farther than this fraction of the target's bounding-box diagonal (or than 0.25 "
+                  "edge lengths, whichever is smaller) from it after the quality rounds get a stiffer attraction and the "
+                  "optimization runs again: larger keeps more of the mSJ, smaller keeps the surface (thesis bound: 0.009)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   sub->add_option("--untangle-iterations", oo.untangle_iterations, "Outer iterations of the untangling at most")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
