@@ -135,6 +135,11 @@ void register_optimize(CLI::App& app) {
                   "optimization runs again: larger keeps more of the mSJ, smaller keeps the surface (thesis bound: 0.009)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  sub->add_option("--drift-retries", oo.drift_retries,
+                  "Optimizations run again, each with a 16x stiffer attraction on the boundary vertices beyond "
+                  "--max-drift (0: off; inputs with inverted hexes never retry)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   sub->add_option("--untangle-iterations", oo.untangle_iterations, "Outer iterations of the untangling at most")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
