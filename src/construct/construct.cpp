@@ -255,8 +255,7 @@ ConstructResult construct_from_prepared(const core::TetMesh& input, const Constr
           }
           for (std::size_t f = 0; f < cur.boundary.size(); ++f) {
             const auto& b = cur.boundary[f];
-            const core::Vec3 n = (P[b[1]] - P[b[0]]).cross(P[b[2]] - P[b[0]]);
-            if (n.dot(label_direction(cur.labels[f])) > 0) continue;
+            if (faces_label(P, b, cur.labels[f])) continue;
             ++wrong_facing;
             for (int v : b) mark(v);
           }

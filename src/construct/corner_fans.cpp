@@ -21,10 +21,6 @@ ReopenedFans reopen_flipped_fans(const std::vector<core::Tri>& tris, const std::
     for (int f : vertex_tris[v]) m |= 1u << labels[f];
     return m;
   };
-  auto faces_label = [&](int f) {
-    const auto& t = tris[f];
-    return (P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]).dot(label_direction(labels[f])) > 0;
-  };
   const double two_pi = 2.0 * std::numbers::pi;
   for (const auto& [c, around] : vertex_tris) {
     unsigned axes = 0;
@@ -41,7 +37,7 @@ ReopenedFans reopen_flipped_fans(const std::vector<core::Tri>& tris, const std::
         const int i = static_cast<int>(std::find(t.begin(), t.end(), c) - t.begin());
         next[t[(i + 1) % 3]] = t[(i + 2) % 3];
         prev[t[(i + 2) % 3]] = t[(i + 1) % 3];
-        flipped = flipped || !faces_label(f);
+        flipped = flipped || !faces_label(P, t, labels[f]);
       }
       if (!flipped || next.size() < 2) continue;
       int first = -1;

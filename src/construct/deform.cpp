@@ -396,15 +396,32 @@ solve::UntangleResult untangle_with_ghosts(const core::TetMesh& mesh, const Labe
   return ur;
 }
 
+//! Tet c has a positive volume in P.
+bool positive(const std::vector<Vec3>& P, const core::Tet& c) {
+  return (P[c[1]] - P[c[0]]).dot((P[c[2]] - P[c[0]]).cross(P[c[3]] - P[c[0]])) > 0;
+}
+
+//! Boundary triangles of lb facing away from their label in P.
+int facing_away(const LabeledBoundary& lb, const std::vector<Vec3>& P) {
+  int n = 0;
+  for (std::size_t f = 0; f < lb.tris.size(); ++f) n += !faces_label(P, lb.tris[f], lb.labels[f]);
+  return n;
+}
+
 //! Failures of a polycube P: tets with det <= 0 and boundary triangles facing away from their label.
 int failures(const core::TetMesh& mesh, const LabeledBoundary& lb, const std::vector<Vec3>& P) {
-  int n = 0;
-  for (const auto& c : mesh.cells) n += !((P[c[1]] - P[c[0]]).dot((P[c[2]] - P[c[0]]).cross(P[c[3]] - P[c[0]])) > 0);
-  for (std::size_t f = 0; f < lb.tris.size(); ++f) {
-    const Tri& t = lb.tris[f];
-    n += !((P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]).dot(label_direction(lb.labels[f])) > 0);
-  }
+  int n = facing_away(lb, P);
+  for (const auto& c : mesh.cells) n += !positive(P, c);
   return n;
+}
+
+//! Height of the ghost tets: `fraction` of the mean boundary edge length (model space).
+double ghost_height(const core::TetMesh& mesh, const LabeledBoundary& lb, double fraction) {
+  if (!(fraction > 0)) return 0.0;
+  double sum = 0;
+  for (const Tri& t : lb.tris)
+    for (int e = 0; e < 3; ++e) sum += (mesh.points[t[e]] - mesh.points[t[(e + 1) % 3]]).norm();
+  return fraction * sum / static_cast<double>(std::max<std::size_t>(1, 3 * lb.tris.size()));
 }
 
 //! Local untangling (after the global optimization left a few failures): only the coordinates
@@ -417,18 +434,13 @@ int untangle_locally(const core::TetMesh& mesh, const LabeledBoundary& lb, const
                      std::vector<Vec3>& P, int rings, const solve::UntangleOptions& base, double h,
                      const std::vector<int>& seeds = {}) {
   const int nv = mesh.num_points();
-  auto det_of = [&](const core::Tet& c) {
-    return (P[c[1]] - P[c[0]]).dot((P[c[2]] - P[c[0]]).cross(P[c[3]] - P[c[0]]));
-  };
   std::vector<char> in(static_cast<std::size_t>(nv), 0);
   for (const auto& c : mesh.cells)
-    if (!(det_of(c) > 0))
+    if (!positive(P, c))
       for (int v : c) in[v] = 1;
-  for (std::size_t f = 0; f < lb.tris.size(); ++f) {
-    const Tri& t = lb.tris[f];
-    if (!((P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]).dot(label_direction(lb.labels[f])) > 0))
-      for (int v : t) in[v] = 1;
-  }
+  for (std::size_t f = 0; f < lb.tris.size(); ++f)
+    if (!faces_label(P, lb.tris[f], lb.labels[f]))
+      for (int v : lb.tris[f]) in[v] = 1;
   for (int v : seeds) in[v] = 1;
   std::vector<std::vector<int>> vc(static_cast<std::size_t>(nv));
   for (std::size_t c = 0; c < mesh.cells.size(); ++c)
@@ -575,58 +587,40 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
   };
   std::vector<int> var;
   int nvar = make_vars(var);
+  // Variables from positions X: free coordinates as they are, chart coordinates the mean of
+  // their vertices' coordinates.
   Eigen::VectorXd y = Eigen::VectorXd::Zero(nvar);
-  {
-    std::vector<double> count(static_cast<std::size_t>(cv.num_groups), 0.0);
-    for (int v = 0; v < nv; ++v)
-      for (int d = 0; d < 3; ++d) {
-        const int j = var[3 * static_cast<std::size_t>(v) + d];
-        y[j] += X0[v][d];
-        if (j < cv.num_groups) count[j] += 1.0;
-      }
-    for (int j = 0; j < cv.num_groups; ++j) y[j] /= count[j];
-  }
-
-  // 3. First polycube: the foldover-free planarity flow (planarity_flow.h), snapped onto exact
-  //    chart planes; or as-rigid-as-possible least squares under the chart constraints:
-  //    minimize sum_t w_t |J_t - R_t|² with R_t the rotation closest to the current J_t.
-  if (o.flow) {
-    double h = 0;  // ghost height, as in step 4
-    if (o.ghost_height > 0) {
-      double sum = 0;
-      for (const Tri& t : lb.tris)
-        for (int e = 0; e < 3; ++e) sum += (mesh.points[t[e]] - mesh.points[t[(e + 1) % 3]]).norm();
-      h = o.ghost_height * sum / std::max<std::size_t>(1, 3 * lb.tris.size());
-    }
-    const PlanarityFlowResult fr =
-        planarity_flow(mesh, X0, cv.vertex_group, cv.num_groups, lb.tris, lb.labels, h, o.flow_options);
+  auto variables_from = [&](const std::vector<Vec3>& X) {
     y.setZero();
     std::vector<double> count(static_cast<std::size_t>(cv.num_groups), 0.0);
     for (int v = 0; v < nv; ++v)
       for (int d = 0; d < 3; ++d) {
         const int j = var[3 * static_cast<std::size_t>(v) + d];
-        y[j] += fr.points[v][d];
+        y[j] += X[v][d];
         if (j < cv.num_groups) count[j] += 1.0;
       }
     for (int j = 0; j < cv.num_groups; ++j) y[j] /= count[j];
+  };
+  variables_from(X0);
+  const double ghost_h = ghost_height(mesh, lb, o.ghost_height);
+
+  // 3. First polycube: the foldover-free planarity flow (planarity_flow.h), snapped onto exact
+  //    chart planes; or as-rigid-as-possible least squares under the chart constraints:
+  //    minimize sum_t w_t |J_t - R_t|² with R_t the rotation closest to the current J_t.
+  if (o.flow) {
+    const PlanarityFlowResult fr =
+        planarity_flow(mesh, X0, cv.vertex_group, cv.num_groups, lb.tris, lb.labels, ghost_h, o.flow_options);
+    variables_from(fr.points);
     res.flow_iterations = fr.iterations;
     res.flow_residual = fr.residual;
-    for (const auto& c : mesh.cells) {
-      Vec3 p[4];
-      for (int i = 0; i < 4; ++i)
-        for (int d = 0; d < 3; ++d) p[i][d] = y[var[3 * static_cast<std::size_t>(c[i]) + d]];
-      res.inverted_after_linear += (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])) <= 0;
-    }
-    int facing_away = 0;
-    for (std::size_t f = 0; f < lb.tris.size(); ++f) {
-      Vec3 p[3];
-      for (int i = 0; i < 3; ++i)
-        for (int d = 0; d < 3; ++d) p[i][d] = y[var[3 * static_cast<std::size_t>(lb.tris[f][i]) + d]];
-      facing_away += (p[1] - p[0]).cross(p[2] - p[0])[lb.labels[f] / 2] * (lb.labels[f] % 2 == 0 ? 1.0 : -1.0) <= 0;
-    }
+    std::vector<Vec3> snapped(static_cast<std::size_t>(nv));
+    for (int v = 0; v < nv; ++v)
+      for (int d = 0; d < 3; ++d) snapped[v][d] = y[var[3 * static_cast<std::size_t>(v) + d]];
+    for (const auto& c : mesh.cells) res.inverted_after_linear += !positive(snapped, c);
     core::logger().info("deform: planarity flow: {} iterations, plane residual {:.3g} edge lengths, {} inverted "
                         "({} tets inverted and {} boundary triangles facing away after the snap), {:.2f} s",
-                        fr.iterations, fr.residual, fr.inverted, res.inverted_after_linear, facing_away, fr.seconds);
+                        fr.iterations, fr.residual, fr.inverted, res.inverted_after_linear, facing_away(lb, snapped),
+                        fr.seconds);
   } else if (o.arap_iterations > 0) {
     const solve::TetElements el = solve::reference_elements(mesh.points, mesh.cells);
     const solve::LinearReduction R = solve::index_reduction(var, nvar, Eigen::VectorXd::Zero(3 * nv));
@@ -700,14 +694,6 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
   uo.tolerance = o.tolerance;
   uo.min_det_target = o.min_det;
   uo.stall_min_det_rise = o.stall_min_det_rise;
-  // Ghost height: a fraction of the mean boundary edge length (model space).
-  double ghost_h = 0;
-  if (o.ghost_height > 0) {
-    double sum = 0;
-    for (const Tri& t : lb.tris)
-      for (int e = 0; e < 3; ++e) sum += (mesh.points[t[e]] - mesh.points[t[(e + 1) % 3]]).norm();
-    ghost_h = o.ghost_height * sum / std::max<std::size_t>(1, 3 * lb.tris.size());
-  }
   for (int round = 0;; ++round) {
     nvar = make_vars(var);
     const int n_points = mesh.num_points();

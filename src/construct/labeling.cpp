@@ -28,6 +28,10 @@ core::Vec3 label_direction(int label) {
   return d;
 }
 
+bool faces_label(const std::vector<core::Vec3>& P, const core::Tri& t, int label) {
+  return (P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]).dot(label_direction(label)) > 0;
+}
+
 const char* label_name(int label) {
   static constexpr const char* kNames[kNumLabels] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
   PC_REQUIRE(label >= 0 && label < kNumLabels, "label out of range");

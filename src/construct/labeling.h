@@ -21,6 +21,8 @@ constexpr int label_axis(int label) { return label / 2; }
 constexpr int opposite_label(int label) { return label ^ 1; }
 //! Unit direction of a label.
 core::Vec3 label_direction(int label);
+//! Triangle t (indices into P) faces the direction of `label` (strictly) in positions P.
+bool faces_label(const std::vector<core::Vec3>& P, const core::Tri& t, int label);
 //! "+X", "-X", "+Y", "-Y", "+Z", "-Z".
 const char* label_name(int label);
 

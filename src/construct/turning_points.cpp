@@ -2,6 +2,7 @@
 #include "construct/turning_points.h"
 
 #include "construct/labeling_check.h"
+#include "construct/surface_graph.h"
 #include "core/errors.h"
 #include "core/log.h"
 
@@ -15,51 +16,21 @@ namespace polycube::construct {
 
 namespace {
 
-//! Undirected edges of a closed surface with their two triangles.
-struct SurfaceEdges {
-  std::vector<std::array<int, 4>> edges;          // (a, b, t0, t1), a < b
-  std::vector<std::vector<int>> vertex_edges;     // #V edges at each vertex
-};
-
-SurfaceEdges surface_edges(const core::TriMesh& s) {
-  std::vector<std::array<int, 3>> half;  // (a, b, tri) with a < b
-  half.reserve(3 * s.cells.size());
-  for (int t = 0; t < s.num_cells(); ++t)
-    for (int e = 0; e < 3; ++e) {
-      const int a = s.cells[t][e], b = s.cells[t][(e + 1) % 3];
-      half.push_back({std::min(a, b), std::max(a, b), t});
-    }
-  std::sort(half.begin(), half.end());
-  SurfaceEdges out;
-  out.vertex_edges.resize(s.points.size());
-  for (std::size_t i = 0; i < half.size();) {
-    std::size_t j = i;
-    while (j < half.size() && half[j][0] == half[i][0] && half[j][1] == half[i][1]) ++j;
-    if (j - i != 2) throw core::InputError("turning points: the surface is not a closed edge-manifold surface");
-    const int id = static_cast<int>(out.edges.size());
-    out.edges.push_back({half[i][0], half[i][1], half[i][2], half[i + 1][2]});
-    out.vertex_edges[half[i][0]].push_back(id);
-    out.vertex_edges[half[i][1]].push_back(id);
-    i = j;
-  }
-  return out;
-}
-
-BoundaryTurning turning(const core::TriMesh& s, const SurfaceEdges& se, const std::vector<core::Vec3>& p,
+BoundaryTurning turning(const detail::SurfaceGraph& g, const std::vector<core::Vec3>& p,
                         const std::vector<int>& labels) {
   BoundaryTurning out;
-  const std::size_t nv = s.points.size();
-  auto on_boundary = [&](int e) { return labels[se.edges[e][2]] != labels[se.edges[e][3]]; };
+  const std::size_t nv = static_cast<std::size_t>(g.num_vertices);
+  auto on_boundary = [&](int e) { return labels[g.edge_triangles[e][0]] != labels[g.edge_triangles[e][1]]; };
   std::vector<int> valence(nv, 0);
-  for (std::size_t e = 0; e < se.edges.size(); ++e)
+  for (std::size_t e = 0; e < g.edges.size(); ++e)
     if (on_boundary(static_cast<int>(e))) {
-      ++valence[se.edges[e][0]];
-      ++valence[se.edges[e][1]];
+      ++valence[g.edges[e][0]];
+      ++valence[g.edges[e][1]];
     }
-  std::vector<char> used(se.edges.size(), 0);
+  std::vector<char> used(g.edges.size(), 0);
   for (std::size_t c = 0; c < nv; ++c) {
     if (valence[c] < 3) continue;
-    for (int e0 : se.vertex_edges[c]) {
+    for (int e0 : g.vertex_edges[static_cast<int>(c)]) {
       if (used[e0] || !on_boundary(e0)) continue;
       // Walk the chain from corner c through valence-2 vertices to the next corner.
       std::vector<int> verts{static_cast<int>(c)}, edges;
@@ -67,16 +38,16 @@ BoundaryTurning turning(const core::TriMesh& s, const SurfaceEdges& se, const st
       for (;;) {
         used[e] = 1;
         edges.push_back(e);
-        cur = se.edges[e][0] == cur ? se.edges[e][1] : se.edges[e][0];
+        cur = g.edges[e][0] == cur ? g.edges[e][1] : g.edges[e][0];
         verts.push_back(cur);
         if (valence[cur] != 2) break;
         int next = -1;
-        for (int f : se.vertex_edges[cur])
+        for (int f : g.vertex_edges[cur])
           if (f != e && on_boundary(f)) next = f;
         if (next < 0 || used[next]) break;
         e = next;
       }
-      const int la = labels[se.edges[e0][2]], lb = labels[se.edges[e0][3]];
+      const int la = labels[g.edge_triangles[e0][0]], lb = labels[g.edge_triangles[e0][1]];
       if (la / 2 == lb / 2) continue;
       const int axis = 3 - la / 2 - lb / 2;
       ++out.chains;
@@ -86,8 +57,8 @@ BoundaryTurning turning(const core::TriMesh& s, const SurfaceEdges& se, const st
       for (std::size_t i = 0; i < edges.size(); ++i) {
         const double step = dir * (p[verts[i + 1]][axis] - p[verts[i]][axis]);
         if (step >= 0) continue;
-        const auto& ed = se.edges[edges[i]];
-        out.steps.push_back({verts[i], verts[i + 1], ed[2], ed[3], -step});
+        const auto& tri = g.edge_triangles[edges[i]];
+        out.steps.push_back({verts[i], verts[i + 1], tri[0], tri[1], -step});
         out.backward_length -= step;
       }
     }
@@ -112,18 +83,15 @@ void check_sizes(const core::TriMesh& s, const std::vector<core::Vec3>& points, 
 BoundaryTurning boundary_turning(const core::TriMesh& surface, const std::vector<core::Vec3>& points,
                                  const std::vector<int>& labels) {
   check_sizes(surface, points, labels);
-  return turning(surface, surface_edges(surface), points, labels);
+  return turning(detail::build_surface_graph(surface), points, labels);
 }
 
 StraightenResult straighten_boundaries(const core::TriMesh& surface, const std::vector<core::Vec3>& points,
                                        std::vector<int> labels, int max_moves) {
   check_sizes(surface, points, labels);
-  const SurfaceEdges se = surface_edges(surface);
-  std::vector<std::vector<int>> vertex_tris(surface.points.size());
-  for (int t = 0; t < surface.num_cells(); ++t)
-    for (int v : surface.cells[t]) vertex_tris[v].push_back(t);
+  const detail::SurfaceGraph g = detail::build_surface_graph(surface);
   StraightenResult r;
-  BoundaryTurning cur = turning(surface, se, points, labels);
+  BoundaryTurning cur = turning(g, points, labels);
   r.backward_before = cur.backward_length;
   r.steps_before = static_cast<int>(cur.steps.size());
   const bool valid = check_labeling(surface, labels).valid();
@@ -137,7 +105,7 @@ StraightenResult straighten_boundaries(const core::TriMesh& surface, const std::
         candidates.push_back({{t}, labels[other]});
         std::vector<int> ring;
         for (int v : {st.from, st.to})
-          for (int u : vertex_tris[v])
+          for (int u : g.vertex_triangles[v])
             if (labels[u] == labels[t] && std::find(ring.begin(), ring.end(), u) == ring.end()) ring.push_back(u);
         std::sort(ring.begin(), ring.end());
         candidates.push_back({ring, labels[other]});
@@ -147,7 +115,7 @@ StraightenResult straighten_boundaries(const core::TriMesh& surface, const std::
       for (const auto& [region, label] : candidates) {
         std::vector<int> trial = labels;
         for (int u : region) trial[u] = label;
-        const BoundaryTurning tr = turning(surface, se, points, trial);
+        const BoundaryTurning tr = turning(g, points, trial);
         if (!(tr.backward_length < best_length)) continue;
         if (!check_labeling(surface, trial).valid()) continue;
         best_length = tr.backward_length;
@@ -155,7 +123,7 @@ StraightenResult straighten_boundaries(const core::TriMesh& surface, const std::
       }
       if (best.empty()) continue;
       labels.swap(best);
-      cur = turning(surface, se, points, labels);
+      cur = turning(g, points, labels);
       ++r.moves;
       moved = true;
       break;

@@ -312,6 +312,18 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   const double start_average = best.average - (res.untangle.iterations > 0 ? o.average_slack : 0.0);
   std::vector<Vec3> best_points = mesh.points;
   const std::vector<Vec3> start_points = mesh.points;
+  // Options of a quality optimization (barrier kept: valid meshes start with a tiny ε; the
+  // initial ε only matters while tangled).
+  auto quality_options = [&](int iterations) {
+    solve::UntangleOptions uo;
+    uo.max_iterations = iterations;
+    uo.newton_steps = 1;
+    uo.volume_weight = o.volume_weight;
+    uo.initial_epsilon = 1.0;
+    uo.tolerance = 1e-4;
+    uo.stall_iterations = 0;
+    return uo;
+  };
   const double diagonal = core::bounding_box(target_mesh.points).extent().norm();
   for (int round = 0; round < o.quality_rounds; ++round) {
     // Heavier weights on the worst hexes (those within 0.1 of the minimum, at least 1%).
@@ -323,13 +335,7 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
       for (std::size_t c = 0; c < multiplier.size(); ++c)
         if (best.values[c] < tau) multiplier[c] *= 4.0;
     }
-    solve::UntangleOptions uo;
-    uo.max_iterations = o.quality_iterations;
-    uo.newton_steps = 1;
-    uo.volume_weight = o.volume_weight;
-    uo.initial_epsilon = 1.0;  // only used while tangled; valid meshes start with a tiny ε
-    uo.tolerance = 1e-4;
-    uo.stall_iterations = 0;
+    const solve::UntangleOptions uo = quality_options(o.quality_iterations);
     mesh.points = best_points;
     const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o);
     add(res.quality, r);
@@ -363,13 +369,7 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
     for (std::size_t k : off) pb.stiffness[k] *= 16.0;
     pb.set_weights(mesh, size, o.surface_weight);
     mesh.points = start_points;
-    solve::UntangleOptions uo;
-    uo.max_iterations = o.quality_iterations * std::max(1, o.quality_rounds);
-    uo.newton_steps = 1;
-    uo.volume_weight = o.volume_weight;
-    uo.initial_epsilon = 1.0;
-    uo.tolerance = 1e-4;
-    uo.stall_iterations = 0;
+    const solve::UntangleOptions uo = quality_options(o.quality_iterations * std::max(1, o.quality_rounds));
     const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o);
     add(res.quality, r);
     if (inverted_corners(mesh) > 0) {  // never trade validity for the surface
