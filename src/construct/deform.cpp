@@ -1,5 +1,6 @@
 //! Polycube deformation (see deform.h).
 #include "construct/deform.h"
+#include "construct/boundary_first.h"
 #include "construct/corner_fans.h"
 #include "construct/labeling.h"
 #include "construct/planarity_flow.h"
@@ -762,6 +763,28 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
         }
       }
       if (res.untangle.untangled) break;
+      if (o.boundary_first && ghost_h > 0) {
+        std::vector<Vec3> valid = P;
+        const BoundaryFirstResult bf =
+            place_boundary_first(mesh.points, mesh.cells, lb.tris, lb.labels, cv.vertex_group, valid, uo, ghost_h);
+        core::logger().info("deform: boundary-first placement: {} chains; charts {} ({} facing away); volume {} ({} "
+                            "inverted){}{}",
+                            bf.chains, bf.chart_step.untangled ? "untangled" : "tangled", bf.charts_inverted,
+                            bf.volume_step.untangled ? "untangled" : "tangled", bf.tets_inverted,
+                            bf.valid ? "" : ": ", bf.reason);
+        if (bf.valid) {
+          P = valid;
+          solve::UntangleResult r = optimize();  // the boundary free again, from a valid state
+          if (!r.untangled || failures(mesh, lb, P) > 0) {
+            P = valid;  // keep the valid placement
+            r.untangled = true;
+            r.inverted_after = 0;
+          }
+          merge(r);
+          res.boundary_first = true;
+          break;
+        }
+      }
     }
     if (ur.untangled || round >= o.refine_rounds) break;
     // Local refinement around the tets that stay inverted.

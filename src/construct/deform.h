@@ -67,6 +67,10 @@ struct DeformOptions {
   //! When the untangling leaves failures, first place the chart fans that stayed flipped at
   //! concave corners on their long sweep (corner_fans.h), then untangle locally.
   bool reopen_fans = true;
+  //! When the local repairs leave failures, build the polycube boundary first (edge chains
+  //! straight between their corners, charts untangled in 2D inside them), then the volume with
+  //! the boundary fixed (boundary_first.h).
+  bool boundary_first = true;
   PlanarityFlowOptions flow_options;
 };
 
@@ -84,6 +88,7 @@ struct DeformResult {
   int split_fan_edges = 0;                  //!< boundary edges split to widen corner fans
   int refined_edges = 0;                    //!< edges split by the local refinement of step 4
   int reopened_fans = 0;                    //!< flipped corner fans placed on their long sweep
+  bool boundary_first = false;              //!< the map came from the boundary-first placement
   solve::UntangleResult untangle;           //!< the elliptic optimization's report
   int inverted_after_linear = 0;            //!< tets inverted after the linear step
   int flow_iterations = 0;                  //!< outer iterations of the planarity flow (0: ARAP)

@@ -31,7 +31,9 @@ TEST_P(SampleLabeling, UnfoldKeepsValidityAndNeverFoldsMore) {
   EXPECT_LE(after.flipped_area, before.flipped_area) << GetParam();
   EXPECT_EQ(un.folded_before, static_cast<int>(before.flipped.size()));
   EXPECT_EQ(un.folded_after, static_cast<int>(after.flipped.size()));
-  if (un.moves == 0) EXPECT_EQ(un.labels, p.labels);
+  if (un.moves == 0) {
+    EXPECT_EQ(un.labels, p.labels);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Samples, SampleLabeling,

@@ -75,9 +75,13 @@ TEST(HexOptimize, PerturbedBoxKeepsCornersAndEdges) {
     double off = 0;
     for (int d = 0; d < 3; ++d)
       if (on_wall(g[d])) off = std::max(off, std::abs(p[d] - g[d]));
-    if (walls == 3) EXPECT_LT((p - g).norm(), 1e-9) << "corner " << v;
-    else if (walls == 2) EXPECT_LT(off, 0.02 * h) << "edge vertex " << v;
-    else if (walls == 1) EXPECT_LT(off, 0.02 * h) << "face vertex " << v;
+    if (walls == 3) {
+      EXPECT_LT((p - g).norm(), 1e-9) << "corner " << v;
+    } else if (walls == 2) {
+      EXPECT_LT(off, 0.02 * h) << "edge vertex " << v;
+    } else if (walls == 1) {
+      EXPECT_LT(off, 0.02 * h) << "face vertex " << v;
+    }
     // and inside the box
     EXPECT_TRUE((p.array() > -0.02 * h).all() && (p.array() < 1 + 0.02 * h).all()) << v;
   }

@@ -1,0 +1,224 @@
+//! Boundary-first placement of a polycube map (see boundary_first.h).
+#include "construct/boundary_first.h"
+#include "construct/labeling.h"
+
+#include "core/errors.h"
+#include "core/log.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <map>
+
+namespace polycube::construct {
+
+namespace {
+
+using core::Tri;
+using core::Vec3;
+
+int axes_mask(const std::vector<int>& vertex_group, int v) {
+  int m = 0;
+  for (int d = 0; d < 3; ++d) m |= vertex_group[3 * static_cast<std::size_t>(v) + d] >= 0 ? 1 << d : 0;
+  return m;
+}
+
+bool positive(const std::vector<Vec3>& P, const core::Tet& c) {
+  return (P[c[1]] - P[c[0]]).dot((P[c[2]] - P[c[0]]).cross(P[c[3]] - P[c[0]])) > 0;
+}
+
+//! Step 1: every chain of boundary vertices along a polycube edge (boundary edges between two
+//! charts) onto the segment between its end corners, at the model's arc-length fractions.
+//! Returns the number of chains, or a negative number with `reason` set.
+int place_chains(const std::vector<Vec3>& points, const std::vector<Tri>& tris, const std::vector<int>& labels,
+                 const std::vector<int>& vertex_group, std::vector<Vec3>& P, std::string& reason) {
+  std::map<std::pair<int, int>, std::array<int, 2>> edge_tris;  // edge -> (label, label)
+  for (std::size_t f = 0; f < tris.size(); ++f)
+    for (int e = 0; e < 3; ++e) {
+      const int a = tris[f][e], b = tris[f][(e + 1) % 3];
+      auto [it, fresh] = edge_tris.try_emplace({std::min(a, b), std::max(a, b)}, std::array<int, 2>{labels[f], -1});
+      if (!fresh) it->second[1] = labels[f];
+    }
+  std::map<int, std::vector<int>> feature;  // vertex -> neighbours along polycube edges
+  for (const auto& [e, l] : edge_tris) {
+    if (l[1] < 0) {
+      reason = "the boundary is not closed";
+      return -1;
+    }
+    if (l[0] == l[1]) continue;
+    if (l[0] / 2 == l[1] / 2) {
+      reason = fmt::format("charts {} and {} of one axis share an edge", label_name(l[0]), label_name(l[1]));
+      return -1;
+    }
+    feature[e.first].push_back(e.second);
+    feature[e.second].push_back(e.first);
+  }
+  std::map<std::pair<int, int>, bool> done;
+  int chains = 0;
+  std::size_t walked = 0;
+  for (const auto& [corner, nbrs] : feature) {
+    if (axes_mask(vertex_group, corner) != 7) continue;
+    for (int first : nbrs) {
+      if (done[{std::min(corner, first), std::max(corner, first)}]) continue;
+      std::vector<int> chain{corner};
+      int prev = corner, cur = first;
+      while (true) {
+        done[{std::min(prev, cur), std::max(prev, cur)}] = true;
+        ++walked;
+        chain.push_back(cur);
+        if (axes_mask(vertex_group, cur) == 7) break;
+        const std::vector<int>& around = feature[cur];
+        if (around.size() != 2) {
+          reason = fmt::format("vertex {} on a polycube edge has {} polycube-edge neighbours", cur, around.size());
+          return -1;
+        }
+        const int next = around[0] == prev ? around[1] : around[0];
+        prev = cur;
+        cur = next;
+      }
+      ++chains;
+      if (chain.size() < 3) continue;
+      const int mask = axes_mask(vertex_group, chain[1]);
+      int e = -1;
+      for (int d = 0; d < 3; ++d)
+        if (!(mask & (1 << d))) e = d;
+      for (std::size_t k = 1; k + 1 < chain.size(); ++k)
+        if (axes_mask(vertex_group, chain[k]) != mask || e < 0) {
+          reason = fmt::format("vertex {} of a polycube edge is not on exactly two charts' planes", chain[k]);
+          return -1;
+        }
+      const double pa = P[chain.front()][e], pb = P[chain.back()][e];
+      if (!(std::abs(pb - pa) > 0)) {
+        reason = fmt::format("polycube edge between corners {} and {} has zero length", chain.front(), chain.back());
+        return -1;
+      }
+      std::vector<double> s(chain.size(), 0.0);
+      for (std::size_t k = 1; k < chain.size(); ++k) s[k] = s[k - 1] + (points[chain[k]] - points[chain[k - 1]]).norm();
+      for (std::size_t k = 1; k + 1 < chain.size(); ++k) P[chain[k]][e] = pa + (pb - pa) * (s[k] / s.back());
+    }
+  }
+  if (2 * walked != [&] {
+        std::size_t n = 0;
+        for (const auto& [v, nb] : feature) n += nb.size();
+        return n;
+      }()) {
+    reason = "a polycube edge loop has no corner";
+    return -1;
+  }
+  return chains;
+}
+
+solve::UntangleOptions fixed_boundary_options(const solve::UntangleOptions& base) {
+  solve::UntangleOptions uo = base;
+  uo.initial_epsilon = 1.0;  // the fixed boundary keeps the mesh from shrinking
+  uo.attractions.clear();
+  uo.on_iteration = nullptr;
+  return uo;
+}
+
+}  // namespace
+
+BoundaryFirstResult place_boundary_first(const std::vector<Vec3>& points, const std::vector<core::Tet>& tets,
+                                         const std::vector<Tri>& tris, const std::vector<int>& labels,
+                                         const std::vector<int>& vertex_group, std::vector<Vec3>& P,
+                                         const solve::UntangleOptions& base, double h) {
+  BoundaryFirstResult res;
+  const int nv = static_cast<int>(points.size());
+  const int nb = static_cast<int>(tris.size());
+  PC_REQUIRE(P.size() == points.size() && vertex_group.size() == 3 * points.size() && labels.size() == tris.size(),
+             "place_boundary_first: inconsistent sizes");
+  PC_REQUIRE(h > 0, "place_boundary_first: the apex height must be positive");
+  std::vector<Vec3> Q = P;
+  res.chains = place_chains(points, tris, labels, vertex_group, Q, res.reason);
+  if (res.chains < 0) return res;
+
+  // 2. Charts: the in-plane coordinates of chart-interior vertices are free; each triangle is
+  //    lifted to a tet whose apex has its first vertex's in-plane coordinates and lies at h
+  //    above the chart plane.
+  std::vector<char> on_boundary(static_cast<std::size_t>(nv), 0);
+  for (const Tri& t : tris)
+    for (int v : t) on_boundary[v] = 1;
+  {
+    std::vector<int> var(3 * static_cast<std::size_t>(nv + nb), -1);
+    Eigen::VectorXd fixed(3 * (nv + nb));
+    int n = 0;
+    for (int v = 0; v < nv; ++v) {
+      const int mask = on_boundary[v] ? axes_mask(vertex_group, v) : 7;
+      for (int d = 0; d < 3; ++d) {
+        fixed[3 * v + d] = Q[v][d];
+        if (mask == (mask & -mask) && !(mask & (1 << d))) var[3 * static_cast<std::size_t>(v) + d] = n++;
+      }
+    }
+    std::vector<Vec3> ref = points;
+    std::vector<core::Tet> lifted;
+    lifted.reserve(static_cast<std::size_t>(nb));
+    for (int f = 0; f < nb; ++f) {
+      const Tri& t = tris[f];
+      const int a = labels[f] / 2;
+      const double sign = labels[f] % 2 == 0 ? 1.0 : -1.0;
+      const Vec3 nrm = (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).normalized();
+      ref.push_back(points[t[0]] + h * nrm);
+      lifted.push_back({t[0], t[1], t[2], nv + f});
+      for (int d = 0; d < 3; ++d) {
+        const std::size_t row = 3 * static_cast<std::size_t>(nv + f) + d;
+        fixed[static_cast<Eigen::Index>(row)] = d == a ? Q[t[0]][d] + sign * h : Q[t[0]][d];
+        if (d != a) var[row] = var[3 * static_cast<std::size_t>(t[0]) + d];
+      }
+      bool locked = true;
+      for (int v : t) locked = locked && axes_mask(vertex_group, v) != (1 << a);
+      if (locked && !faces_label(Q, t, labels[f])) ++res.locked_inverted;
+    }
+    if (res.locked_inverted > 0) {
+      res.reason = fmt::format("{} chart triangles with all vertices on polycube edges face away", res.locked_inverted);
+      return res;
+    }
+    const solve::LinearReduction R = solve::index_reduction(var, n, fixed);
+    Eigen::VectorXd y(n);
+    for (std::size_t i = 0; i < 3 * static_cast<std::size_t>(nv); ++i)
+      if (var[i] >= 0) y[var[i]] = Q[i / 3][i % 3];
+    res.chart_step = solve::untangle(solve::reference_elements(ref, lifted), R, y, fixed_boundary_options(base));
+    const Eigen::VectorXd x = R.apply(y);
+    for (int v = 0; v < nv; ++v)
+      if (on_boundary[v]) Q[v] = x.segment<3>(3 * v);
+    for (int f = 0; f < nb; ++f) res.charts_inverted += !faces_label(Q, tris[f], labels[f]);
+    if (res.charts_inverted > 0) {
+      res.reason = fmt::format("{} chart triangles face away after the 2D untangling", res.charts_inverted);
+      return res;
+    }
+  }
+
+  // 3. Volume: the boundary fixed, the interior free.
+  {
+    std::vector<int> var(3 * static_cast<std::size_t>(nv), -1);
+    int n = 0;
+    for (int v = 0; v < nv; ++v)
+      if (!on_boundary[v])
+        for (int d = 0; d < 3; ++d) var[3 * static_cast<std::size_t>(v) + d] = n++;
+    for (const auto& c : tets)
+      if (on_boundary[c[0]] && on_boundary[c[1]] && on_boundary[c[2]] && on_boundary[c[3]] && !positive(Q, c))
+        ++res.locked_inverted;
+    if (res.locked_inverted > 0) {
+      res.reason = fmt::format("{} tets with all vertices on the boundary are inverted", res.locked_inverted);
+      return res;
+    }
+    const solve::LinearReduction R = solve::index_reduction(var, n, solve::flatten(Q));
+    Eigen::VectorXd y(n);
+    for (std::size_t i = 0; i < var.size(); ++i)
+      if (var[i] >= 0) y[var[i]] = Q[i / 3][i % 3];
+    res.volume_step = solve::untangle(solve::reference_elements(points, tets), R, y, fixed_boundary_options(base));
+    const Eigen::VectorXd x = R.apply(y);
+    for (int v = 0; v < nv; ++v)
+      if (!on_boundary[v]) Q[v] = x.segment<3>(3 * v);
+    for (const auto& c : tets) res.tets_inverted += !positive(Q, c);
+    if (res.tets_inverted > 0) {
+      res.reason = fmt::format("{} tets stay inverted after the volume untangling", res.tets_inverted);
+      return res;
+    }
+  }
+  res.valid = true;
+  P.swap(Q);
+  return res;
+}
+
+}  // namespace polycube::construct

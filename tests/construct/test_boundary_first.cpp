@@ -1,0 +1,142 @@
+//! Tests of the boundary-first placement of a polycube map (construct/boundary_first.h).
+#include "construct/boundary_first.h"
+#include "construct/labeling.h"
+#include "core/fixtures.h"
+#include "core/polycube_map.h"
+#include "core/topology.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace polycube {
+namespace {
+
+using core::Vec3;
+
+double det(const std::vector<Vec3>& p, const core::Tet& c) {
+  return (p[c[1]] - p[c[0]]).dot((p[c[2]] - p[c[0]]).cross(p[c[3]] - p[c[0]]));
+}
+
+//! An 8×8×8 grid of unit cubes with the octant x, y, z ≥ 4 removed (a concave corner at
+//! (4, 4, 4), three concave edges), 6 tets per cube, its boundary labeled by the normals and one
+//! chart group per (axis, plane).
+struct NotchedCube {
+  core::TetMesh mesh;
+  std::vector<core::Tri> tris;
+  std::vector<int> labels;
+  std::vector<int> group;
+  std::vector<char> on_boundary;
+
+  [[nodiscard]] int mask(int v) const {
+    int m = 0;
+    for (int d = 0; d < 3; ++d) m |= group[3 * static_cast<std::size_t>(v) + d] >= 0 ? 1 << d : 0;
+    return m;
+  }
+};
+
+NotchedCube notched_cube() {
+  core::HexMesh h = test::hex_grid(8, 8, 8);
+  std::vector<core::Hex> kept;
+  for (const auto& c : h.cells) {
+    const Vec3& p = h.points[c[0]];
+    if (!(p.x() >= 4 && p.y() >= 4 && p.z() >= 4)) kept.push_back(c);
+  }
+  h.cells = kept;
+  NotchedCube s;
+  const core::TetMesh all = test::tetrahedralize(h);
+  std::vector<int> index(all.points.size(), -1);
+  for (const auto& c : all.cells)
+    for (int v : c)
+      if (index[v] < 0) {
+        index[v] = s.mesh.num_points();
+        s.mesh.points.push_back(all.points[v]);
+      }
+  for (const auto& c : all.cells) s.mesh.cells.push_back({index[c[0]], index[c[1]], index[c[2]], index[c[3]]});
+  const core::TetBoundary b = core::boundary(s.mesh);
+  const auto nv = static_cast<std::size_t>(s.mesh.num_points());
+  s.group.assign(3 * nv, -1);
+  s.on_boundary.assign(nv, 0);
+  for (const auto& t : b.surface.cells) {
+    const core::Tri tri{b.vertex_map[t[0]], b.vertex_map[t[1]], b.vertex_map[t[2]]};
+    const auto& p = s.mesh.points;
+    const int label = core::dominant_axis_label((p[tri[1]] - p[tri[0]]).cross(p[tri[2]] - p[tri[0]]));
+    s.tris.push_back(tri);
+    s.labels.push_back(label);
+    const int a = label / 2;
+    for (int v : tri) {
+      s.group[3 * static_cast<std::size_t>(v) + a] = 100 * a + static_cast<int>(std::lround(p[v][a]));
+      s.on_boundary[v] = 1;
+    }
+  }
+  return s;
+}
+
+TEST(BoundaryFirst, ScrambledPolycubeGetsStraightEdgesAndNoInvertedTet) {
+  const NotchedCube s = notched_cube();
+  const int nv = s.mesh.num_points();
+  // The polycube: the model stretched along x; then every polycube-edge vertex pushed back and
+  // forth along its edge (chains with turning points), chart vertices moved in their plane and
+  // interior vertices moved freely, by up to 0.45–0.6 edge lengths. Corners and chart
+  // coordinates stay exact.
+  std::vector<Vec3> exact = s.mesh.points;
+  for (Vec3& p : exact) p.x() *= 1.3;
+  std::vector<Vec3> P = exact;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int corners = 0;
+  for (int v = 0; v < nv; ++v) {
+    const int m = s.on_boundary[v] ? s.mask(v) : 0;
+    if (m == 7) ++corners;
+    for (int d = 0; d < 3; ++d)
+      if (!(m & (1 << d))) P[v][d] += (s.on_boundary[v] && m != (m & -m) ? 0.45 : 0.6) * u(rng);
+  }
+  EXPECT_EQ(corners, 14);  // 7 box corners and 7 at the notch
+  int inverted = 0;
+  for (const auto& c : s.mesh.cells) inverted += det(P, c) <= 0;
+  ASSERT_GT(inverted, 100) << "fixture: the scrambled polycube should be badly tangled";
+
+  solve::UntangleOptions o;
+  o.min_det_target = 1e-6;
+  const auto r = construct::place_boundary_first(s.mesh.points, s.mesh.cells, s.tris, s.labels, s.group, P, o, 0.5);
+  ASSERT_TRUE(r.valid) << r.reason;
+  EXPECT_TRUE(r.reason.empty());
+  EXPECT_EQ(r.tets_inverted, 0);
+  EXPECT_EQ(r.charts_inverted, 0);
+  // Independently: every tet positive, every triangle facing its label.
+  for (const auto& c : s.mesh.cells) EXPECT_GT(det(P, c), 0.0);
+  for (std::size_t f = 0; f < s.tris.size(); ++f) EXPECT_TRUE(construct::faces_label(P, s.tris[f], s.labels[f]));
+  // Chart coordinates untouched bit for bit; edge vertices back on their uniform positions (the
+  // model's arc-length fractions along straight, uniformly subdivided edges).
+  for (int v = 0; v < nv; ++v) {
+    if (!s.on_boundary[v]) continue;
+    const int m = s.mask(v);
+    for (int d = 0; d < 3; ++d) {
+      if (m & (1 << d)) {
+        EXPECT_EQ(P[v][d], exact[v][d]);
+      }
+      if (m != (m & -m)) {
+        EXPECT_NEAR(P[v][d], exact[v][d], 1e-12) << "edge vertex " << v;
+      }
+    }
+  }
+}
+
+TEST(BoundaryFirst, MirroredPolycubeIsRefusedAndLeftAsItWas) {
+  // Every chart polygon reversed (the polycube mirrored in x): no chart can face its label, so
+  // the placement must fail and leave P alone.
+  const NotchedCube s = notched_cube();
+  std::vector<Vec3> P = s.mesh.points;
+  for (Vec3& p : P) p.x() = -p.x();
+  const std::vector<Vec3> before = P;
+  solve::UntangleOptions o;
+  o.max_iterations = 30;
+  const auto r = construct::place_boundary_first(s.mesh.points, s.mesh.cells, s.tris, s.labels, s.group, P, o, 0.5);
+  EXPECT_FALSE(r.valid);
+  EXPECT_FALSE(r.reason.empty());
+  EXPECT_EQ(P, before);
+}
+
+}  // namespace
+}  // namespace polycube
