@@ -81,6 +81,7 @@ void run_construct(const ConstructCliOptions& o) {
       {"split_boundary_triangles", r.split_triangles},
       {"split_boundary_edges", r.split_edges},
       {"refined_edges", r.refined_edges},
+      {"boundary_first", r.boundary_first},
       {"boundary_triangles", r.boundary.size()},
       {"charts", r.charts},
       {"corners", r.corners},
@@ -190,6 +191,12 @@ void register_construct(CLI::App& app) {
                   "When tets stay inverted, split their edges and untangle again, at most this many times")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  sub->add_flag("!--no-boundary-first", c.deform.boundary_first,
+                "Do not fall back on the boundary-first placement (polycube edges straight between their corners, "
+                "charts untangled in 2D inside them, then the volume) when the untangling stays stuck");
+  sub->add_flag("--boundary-first-start", c.deform.boundary_first_start,
+                "Place the boundary first right after the first polycube, instead of only when the free-boundary "
+                "untangling stays stuck");
   sub->add_flag("--flow", c.deform.flow,
                 "First polycube by the foldover-free planarity flow (the model flows towards its chart planes "
                 "without folding) instead of the as-rigid-as-possible least squares");

@@ -210,9 +210,24 @@ BoundaryFirstResult place_boundary_first(const std::vector<Vec3>& points, const 
     const Eigen::VectorXd x = R.apply(y);
     for (int v = 0; v < nv; ++v)
       if (!on_boundary[v]) Q[v] = x.segment<3>(3 * v);
-    for (const auto& c : tets) res.tets_inverted += !positive(Q, c);
+    for (const auto& c : tets) {
+      if (positive(Q, c)) continue;
+      ++res.tets_inverted;
+      if (res.tets_inverted <= 10) {
+        int nb_v = 0;
+        std::string masks;
+        for (int v : c) {
+          nb_v += on_boundary[v];
+          masks += fmt::format(" {}:{}", v, on_boundary[v] ? axes_mask(vertex_group, v) : 0);
+        }
+        const double vol = (Q[c[1]] - Q[c[0]]).dot((Q[c[2]] - Q[c[0]]).cross(Q[c[3]] - Q[c[0]])) / 6.0;
+        core::logger().debug("boundary first: tet inverted, volume {:.3g}, {} boundary vertices (vertex:axes{})", vol,
+                             nb_v, masks);
+      }
+    }
     if (res.tets_inverted > 0) {
       res.reason = fmt::format("{} tets stay inverted after the volume untangling", res.tets_inverted);
+      res.placement = std::move(Q);
       return res;
     }
   }

@@ -35,6 +35,9 @@ struct BoundaryFirstResult {
   solve::UntangleResult chart_step;  //!< the 2D untangling's report
   solve::UntangleResult volume_step; //!< the volume untangling's report
   std::string reason;                //!< why it failed (empty when valid)
+  //! When the charts were placed but tets stay inverted: the placement (every boundary
+  //! triangle facing its label, the interior as the volume step left it); empty otherwise.
+  std::vector<core::Vec3> placement;
 };
 
 //! Place the polycube boundary first, then the volume (see the file comment).

@@ -286,6 +286,7 @@ ConstructResult construct_from_prepared(const core::TetMesh& input, const Constr
   res.split_triangles = def.split_triangles;
   res.split_edges = def.split_edges;
   res.refined_edges = def.refined_edges;
+  res.boundary_first = def.boundary_first;
   res.inverted_after_linear = def.inverted_after_linear;
   res.untangle = def.untangle;
   res.predeform = std::move(pre);

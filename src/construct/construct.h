@@ -91,6 +91,7 @@ struct ConstructResult {
   int split_triangles = 0;          //!< boundary triangles split by the deformation
   int split_edges = 0;              //!< boundary edges split by the deformation
   int refined_edges = 0;            //!< edges split by the local refinement of the untangling
+  bool boundary_first = false;      //!< the map came from the boundary-first placement (boundary_first.h)
   int charts = 0;                   //!< charts of the final labeling
   int corners = 0;                  //!< polycube corners
   int boundaries = 0;               //!< polycube edges (chart boundaries)

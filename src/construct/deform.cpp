@@ -695,6 +695,8 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
   uo.tolerance = o.tolerance;
   uo.min_det_target = o.min_det;
   uo.stall_min_det_rise = o.stall_min_det_rise;
+  bool retry_boundary_first = o.boundary_first && o.boundary_first_start && ghost_h > 0;
+  int boundary_first_rounds = 0;
   for (int round = 0;; ++round) {
     nvar = make_vars(var);
     const int n_points = mesh.num_points();
@@ -728,17 +730,32 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
       res.untangle.energy = r.energy;
       res.untangle.epsilon = r.epsilon;
     };
-    const solve::UntangleResult ur = optimize();
-    if (round == 0) res.untangle = ur;
-    else merge(ur);
-    if (!ur.untangled) {
+    // Edges of the tets with det J <= min det in P (to refine around them).
+    auto inverted_tet_edges = [&] {
+      std::vector<std::array<int, 2>> edges;
+      for (int t = 0; t < el.size(); ++t) {
+        const auto& c = el.tets[t];
+        Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+        for (int i = 0; i < 4; ++i) J += P[c[i]] * el.gradients[t].row(i);
+        if (J.determinant() > o.min_det) continue;
+        for (const auto& e : core::kTetEdges) edges.push_back({std::min(c[e[0]], c[e[1]]), std::max(c[e[0]], c[e[1]])});
+      }
+      std::sort(edges.begin(), edges.end());
+      edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+      return edges;
+    };
+    // After a boundary-first placement that left a few tets inverted and was refined around
+    // them, go straight back to it: the global and local untangling already failed on this map.
+    if (!retry_boundary_first) {
+      const solve::UntangleResult ur = optimize();
+      if (round == 0) res.untangle = ur;
+      else merge(ur);
+      if (ur.untangled) break;
       // A few tets left: untangle locally with a fresh ε, in growing regions, then go back
       // through the global optimizer (from a valid state it stays valid) to spread the
-      // distortion, and take its verdict.
-      // Concave corners whose chart fan stayed swept the short way: place the fan on its
-      // long sweep first (corner_fans.h), then untangle around it.
-      // First the plain local untangling; when it stays stuck, place the chart fans that stayed
-      // flipped at concave corners on their long sweep (corner_fans.h) and untangle around them.
+      // distortion, and take its verdict. First the plain local untangling; when it stays
+      // stuck, place the chart fans that stayed flipped at concave corners on their long sweep
+      // (corner_fans.h) and untangle around them.
       std::vector<int> seeds;
       for (int rings : {2, 4, 8}) {
         bool fixed = untangle_locally(mesh, lb, cv.vertex_group, P, rings, uo, ghost_h, seeds) == 0;
@@ -763,45 +780,44 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
         }
       }
       if (res.untangle.untangled) break;
-      if (o.boundary_first && ghost_h > 0) {
-        std::vector<Vec3> valid = P;
-        const BoundaryFirstResult bf =
-            place_boundary_first(mesh.points, mesh.cells, lb.tris, lb.labels, cv.vertex_group, valid, uo, ghost_h);
-        core::logger().info("deform: boundary-first placement: {} chains; charts {} ({} facing away); volume {} ({} "
-                            "inverted){}{}",
-                            bf.chains, bf.chart_step.untangled ? "untangled" : "tangled", bf.charts_inverted,
-                            bf.volume_step.untangled ? "untangled" : "tangled", bf.tets_inverted,
-                            bf.valid ? "" : ": ", bf.reason);
-        if (bf.valid) {
-          P = valid;
-          solve::UntangleResult r = optimize();  // the boundary free again, from a valid state
-          if (!r.untangled || failures(mesh, lb, P) > 0) {
-            P = valid;  // keep the valid placement
-            r.untangled = true;
-            r.inverted_after = 0;
-          }
-          merge(r);
-          res.boundary_first = true;
-          break;
+    }
+    retry_boundary_first = false;
+    // The boundary first (boundary_first.h): a valid placement goes through the global
+    // optimizer once more (from a valid state it stays valid) to spread the distortion; a
+    // placement with a few tets inverted is refined around them and placed again.
+    if (o.boundary_first && ghost_h > 0) {
+      std::vector<Vec3> valid = P;
+      const BoundaryFirstResult bf =
+          place_boundary_first(mesh.points, mesh.cells, lb.tris, lb.labels, cv.vertex_group, valid, uo, ghost_h);
+      core::logger().info("deform: boundary-first placement: {} chains; charts {} ({} facing away, {:.1f} s); volume "
+                          "{} ({} inverted, {:.1f} s){}{}",
+                          bf.chains, bf.chart_step.untangled ? "untangled" : "tangled", bf.charts_inverted,
+                          bf.chart_step.seconds, bf.volume_step.untangled ? "untangled" : "tangled", bf.tets_inverted,
+                          bf.volume_step.seconds, bf.valid ? "" : ": ", bf.reason);
+      if (bf.valid) {
+        P = valid;
+        solve::UntangleResult r = optimize();  // the boundary free again, from a valid state
+        if (!r.untangled || failures(mesh, lb, P) > 0) {
+          P = valid;  // keep the valid placement
+          r.untangled = true;
+          r.inverted_after = 0;
         }
+        merge(r);
+        res.boundary_first = true;
+        break;
+      }
+      if (!bf.placement.empty() && boundary_first_rounds < o.boundary_first_refinements) {
+        ++boundary_first_rounds;
+        P = bf.placement;
+        retry_boundary_first = true;
       }
     }
-    if (ur.untangled || round >= o.refine_rounds) break;
+    if (!retry_boundary_first && round >= o.refine_rounds) break;
     // Local refinement around the tets that stay inverted.
-    std::vector<std::array<int, 2>> edges;
-    for (int t = 0; t < el.size(); ++t) {
-      const auto& c = el.tets[t];
-      Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
-      for (int i = 0; i < 4; ++i) J += P[c[i]] * el.gradients[t].row(i);
-      if (J.determinant() > o.min_det) continue;
-      for (const auto& e : core::kTetEdges) edges.push_back({std::min(c[e[0]], c[e[1]]), std::max(c[e[0]], c[e[1]])});
-    }
-    std::sort(edges.begin(), edges.end());
-    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-    const int split = split_edges(mesh, lb, edges, &P);
+    const int split = split_edges(mesh, lb, inverted_tet_edges(), &P);
     res.refined_edges += split;
-    core::logger().debug("deform: {} tets stay inverted; refinement round {} split {} edges", ur.inverted_after,
-                         round + 1, split);
+    core::logger().debug("deform: {} tets stay inverted; refinement round {} split {} edges",
+                         res.untangle.inverted_after, round + 1, split);
     if (split == 0) break;
     lb = match_boundary(mesh, lb.tris, lb.labels);
     cv = chart_variables(mesh.num_points(), lb.tris, lb.labels);

@@ -71,6 +71,12 @@ struct DeformOptions {
   //! straight between their corners, charts untangled in 2D inside them), then the volume with
   //! the boundary fixed (boundary_first.h).
   bool boundary_first = true;
+  //! When the boundary-first placement leaves tets inverted, split their edges and place
+  //! again, at most this many times.
+  int boundary_first_refinements = 3;
+  //! Place the boundary first right after the first polycube, without trying the
+  //! free-boundary untangling before (which stays the fallback).
+  bool boundary_first_start = false;
   PlanarityFlowOptions flow_options;
 };
 
