@@ -192,11 +192,11 @@ void register_construct(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   sub->add_flag("!--no-boundary-first", c.deform.boundary_first,
-                "Do not fall back on the boundary-first placement (polycube edges straight between their corners, "
-                "charts untangled in 2D inside them, then the volume) when the untangling stays stuck");
-  sub->add_flag("--boundary-first-start", c.deform.boundary_first_start,
-                "Place the boundary first right after the first polycube, instead of only when the free-boundary "
-                "untangling stays stuck");
+                "Never place the boundary first (polycube edges straight between their corners, charts untangled in "
+                "2D inside them, then the volume with the boundary fixed); only the free-boundary untangling");
+  sub->add_flag("!--untangle-first", c.deform.boundary_first_start,
+                "Untangle with the boundary free (then the local repairs) before trying the boundary-first "
+                "placement; by default the boundary is placed first and the free untangling is the fallback");
   sub->add_flag("--flow", c.deform.flow,
                 "First polycube by the foldover-free planarity flow (the model flows towards its chart planes "
                 "without folding) instead of the as-rigid-as-possible least squares");

@@ -744,11 +744,55 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
       edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
       return edges;
     };
-    // After a boundary-first placement that left a few tets inverted and was refined around
-    // them, go straight back to it: the global and local untangling already failed on this map.
+    // The boundary first (boundary_first.h). A valid placement goes through the global
+    // optimizer once more with the boundary free (from a valid state it stays valid; a tighter
+    // tolerance, since the energy is dominated by the many good tets while the few bad ones
+    // still improve); a placement that leaves a few tets inverted is refined around them and
+    // placed again in the next round.
+    enum class Placed { Valid, Retry, Failed };
+    auto boundary_first_step = [&] {
+      std::vector<Vec3> valid = P;
+      const BoundaryFirstResult bf =
+          place_boundary_first(mesh.points, mesh.cells, lb.tris, lb.labels, cv.vertex_group, valid, uo, ghost_h);
+      core::logger().info("deform: boundary-first placement: {} chains; charts {} ({} facing away, {:.1f} s); volume "
+                          "{} ({} inverted, {:.1f} s){}{}",
+                          bf.chains, bf.chart_step.untangled ? "untangled" : "tangled", bf.charts_inverted,
+                          bf.chart_step.seconds, bf.volume_step.untangled ? "untangled" : "tangled", bf.tets_inverted,
+                          bf.volume_step.seconds, bf.valid ? "" : ": ", bf.reason);
+      if (bf.valid) {
+        P = valid;
+        const solve::UntangleOptions keep = uo;
+        uo.tolerance = o.tolerance * o.boundary_first_relax_tolerance;
+        uo.max_iterations = std::min(o.max_iterations, o.boundary_first_relax_iterations);
+        solve::UntangleResult r = optimize();  // the boundary free again
+        uo = keep;
+        if (!r.untangled || failures(mesh, lb, P) > 0) {
+          P = valid;  // keep the valid placement
+          r.untangled = true;
+          r.inverted_after = 0;
+        }
+        merge(r);
+        res.boundary_first = true;
+        return Placed::Valid;
+      }
+      if (!bf.placement.empty() && boundary_first_rounds < o.boundary_first_refinements) {
+        ++boundary_first_rounds;
+        P = bf.placement;
+        return Placed::Retry;
+      }
+      return Placed::Failed;
+    };
+    const bool use_boundary_first = o.boundary_first && ghost_h > 0;
+    bool tried_boundary_first = false;
+    if (retry_boundary_first || (round == 0 && use_boundary_first && o.boundary_first_start)) {
+      tried_boundary_first = true;
+      const Placed placed = boundary_first_step();
+      if (placed == Placed::Valid) break;
+      retry_boundary_first = placed == Placed::Retry;
+    }
     if (!retry_boundary_first) {
       const solve::UntangleResult ur = optimize();
-      if (round == 0) res.untangle = ur;
+      if (round == 0 && !tried_boundary_first) res.untangle = ur;
       else merge(ur);
       if (ur.untangled) break;
       // A few tets left: untangle locally with a fresh ε, in growing regions, then go back
@@ -780,36 +824,10 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
         }
       }
       if (res.untangle.untangled) break;
-    }
-    retry_boundary_first = false;
-    // The boundary first (boundary_first.h): a valid placement goes through the global
-    // optimizer once more (from a valid state it stays valid) to spread the distortion; a
-    // placement with a few tets inverted is refined around them and placed again.
-    if (o.boundary_first && ghost_h > 0) {
-      std::vector<Vec3> valid = P;
-      const BoundaryFirstResult bf =
-          place_boundary_first(mesh.points, mesh.cells, lb.tris, lb.labels, cv.vertex_group, valid, uo, ghost_h);
-      core::logger().info("deform: boundary-first placement: {} chains; charts {} ({} facing away, {:.1f} s); volume "
-                          "{} ({} inverted, {:.1f} s){}{}",
-                          bf.chains, bf.chart_step.untangled ? "untangled" : "tangled", bf.charts_inverted,
-                          bf.chart_step.seconds, bf.volume_step.untangled ? "untangled" : "tangled", bf.tets_inverted,
-                          bf.volume_step.seconds, bf.valid ? "" : ": ", bf.reason);
-      if (bf.valid) {
-        P = valid;
-        solve::UntangleResult r = optimize();  // the boundary free again, from a valid state
-        if (!r.untangled || failures(mesh, lb, P) > 0) {
-          P = valid;  // keep the valid placement
-          r.untangled = true;
-          r.inverted_after = 0;
-        }
-        merge(r);
-        res.boundary_first = true;
-        break;
-      }
-      if (!bf.placement.empty() && boundary_first_rounds < o.boundary_first_refinements) {
-        ++boundary_first_rounds;
-        P = bf.placement;
-        retry_boundary_first = true;
+      if (use_boundary_first && !tried_boundary_first) {
+        const Placed placed = boundary_first_step();
+        if (placed == Placed::Valid) break;
+        retry_boundary_first = placed == Placed::Retry;
       }
     }
     if (!retry_boundary_first && round >= o.refine_rounds) break;

@@ -74,9 +74,14 @@ struct DeformOptions {
   //! When the boundary-first placement leaves tets inverted, split their edges and place
   //! again, at most this many times.
   int boundary_first_refinements = 3;
-  //! Place the boundary first right after the first polycube, without trying the
-  //! free-boundary untangling before (which stays the fallback).
-  bool boundary_first_start = false;
+  //! Place the boundary first right after the first polycube (the free-boundary untangling,
+  //! then the local repairs, are the fallback when it fails); false: only after them.
+  bool boundary_first_start = true;
+  //! The free-boundary optimization after a valid boundary-first placement stops at this
+  //! fraction of `tolerance` (the energy is dominated by the many good tets while the few bad
+  //! ones still improve), after at most this many outer iterations.
+  double boundary_first_relax_tolerance = 0.01;
+  int boundary_first_relax_iterations = 40;
   PlanarityFlowOptions flow_options;
 };
 

@@ -103,8 +103,8 @@ TEST_P(ConstructSample, IsCertified) {
   expect_simplified(r, GetParam());
 }
 INSTANTIATE_TEST_SUITE_P(Samples, ConstructSample, ::testing::Values("box-cylinder", "l-bracket", "flange", "ring"),
-                         [](const auto& info) {
-                           std::string n = info.param;
+                         [](const auto& param_info) {
+                           std::string n = param_info.param;
                            std::replace(n.begin(), n.end(), '-', '_');
                            return n;
                          });
