@@ -1,76 +1,18 @@
-// Whole construction (construct_polycube) on the shapes it certifies today: the result is
-// accepted by the independent certifier (certifier.h) and its labeling by the independent
-// labeling validator (validator.h). Shapes where a few tets still stay inverted are listed in
-// the README; they stop with NotCertified and never return a map.
-#include "construct/construct.h"
-#include "core/topology.h"
-#include "io/mesh_io.h"
+// Whole construction (construct_polycube) on the quick shapes of ../shared/data: the result is
+// accepted by the independent certifier and its simplification is certified
+// (construct/model_checks.h). The larger models are in test_construct_heavy.cpp.
+#include "construct/model_checks.h"
 #include "samples/samples.h"
-#include "simplify/simplify.h"
-#include "structure/structure.h"
-
-#include "construct/certifier.h"
-#include "construct/validator.h"
 
 #include <gtest/gtest.h>
-
-#include <cmath>
-#include <filesystem>
 
 namespace polycube {
 namespace {
 
-const std::filesystem::path kData = POLYCUBE_DATA_DIR;
-
-void expect_certified(const construct::ConstructResult& r, const std::string& what) {
-  const test::Verdict v = test::independent_check(r.map.tets, r.map.model, r.map.polycube, r.boundary, r.labels);
-  EXPECT_TRUE(test::certified(v)) << what << ": bad model " << v.bad_model << ", bad polycube " << v.bad_polycube
-                                  << ", off plane " << v.off_plane << ", unlabeled " << v.unlabeled
-                                  << ", wrong facing " << v.wrong_facing;
-  EXPECT_EQ(v.boundary_faces, static_cast<int>(r.boundary.size())) << what;
-  core::TriMesh surface;
-  surface.points = r.map.model;
-  surface.cells = r.boundary;
-  EXPECT_TRUE(test::validate_labeling(surface, r.labels).valid()) << what;
-  EXPECT_GT(r.charts, 5) << what;
-  EXPECT_GE(r.isometric_average, 1.0) << what;  // max(σ1, 1/σ3) >= 1 for every tet
-}
-
-//! Simplification (issue "polycube simplification") of a certified map: the output is certified by
-//! the independent certifier with the construction's boundary labels, keeps the structure
-//! (corners, edges, charts), has integer corners, and #D does not grow.
-void expect_simplified(const construct::ConstructResult& r, const std::string& what) {
-  const simplify::SimplifyResult s = simplify::simplify_map(r.map);
-  ASSERT_TRUE(s.fit.certified) << what << ": " << (s.fit.failures.empty() ? "" : s.fit.failures.front());
-  const auto& m = s.fit.map;
-  ASSERT_EQ(m.tets, r.map.tets) << what;
-  const test::Verdict v = test::independent_check(m.tets, m.model, m.polycube, r.boundary, r.labels);
-  EXPECT_TRUE(test::certified(v)) << what << ": bad polycube " << v.bad_polycube << ", off plane " << v.off_plane
-                                  << ", wrong facing " << v.wrong_facing;
-  const structure::PolycubeStructure before = structure::extract_structure(r.map);
-  const structure::PolycubeStructure after = structure::extract_structure(m);
-  EXPECT_EQ(after.corners.size(), before.corners.size()) << what;
-  EXPECT_EQ(after.edges.size(), before.edges.size()) << what;
-  EXPECT_EQ(after.charts.size(), before.charts.size()) << what;
-  for (const auto& c : after.corners)
-    for (int a = 0; a < 3; ++a) EXPECT_EQ(c.position[a], std::round(c.position[a])) << what;
-  EXPECT_LE(s.after.hex_domains, s.before.hex_domains) << what;
-  EXPECT_LE(s.after.quad_domains, s.before.quad_domains) << what;
-}
-
-void construct_file(const std::filesystem::path& path) {
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << "missing " << path;
-  construct::ConstructResult r;
-  if (path.extension() == ".mesh") {
-    core::TetMesh mesh = core::tets_of(io::read_mesh(path));
-    mesh.labels.clear();
-    r = construct::construct_polycube(std::move(mesh));
-  } else {
-    r = construct::construct_polycube(io::read_surface(path));
-  }
-  expect_certified(r, path.filename().string());
-  expect_simplified(r, path.filename().string());
-}
+using test::construct_file;
+using test::expect_certified;
+using test::expect_simplified;
+using test::kData;
 
 TEST(ConstructModels, Torus) { construct_file(kData / "surface/torus.obj"); }
 TEST(ConstructModels, CubeMinusSphere) { construct_file(kData / "surface/cube_minus_sphere.obj"); }
