@@ -3,8 +3,9 @@
 # and every built-in sample; prints one table (markdown) and writes it, with the machine, to
 # bench/RESULTS.md when --write is given.
 # Usage: bench/chain.sh [--write] [--table-only] [build-dir]
-#   env: HEXES=20000, TIME_LIMIT=60, OUT=out/bench; --table-only rebuilds the table from OUT
-#   without running anything.
+#   env: HEXES=20000, TIME_LIMIT=60, OUT=out/bench; ONLY="surface/bunny tet/cup ..." runs just
+#   those models (kind/name; several lanes can share one OUT); --table-only rebuilds the table
+#   from OUT without running anything.
 set -uo pipefail
 write=0
 table_only=0
@@ -36,6 +37,7 @@ done
 for f in "${inputs[@]+"${inputs[@]}"}"; do
   kind=$(basename "$(dirname "$f")"); name=$(basename "${f%.*}")
   [[ "$name" == sample_* ]] && { kind=sample; name=${name#sample_}; }
+  if [[ -n "${ONLY:-}" && " $ONLY " != *" $kind/$name "* ]]; then continue; fi
   dir="$out/${kind}_$name"
   rm -rf "$dir"
   echo "== $kind/$name" >&2
