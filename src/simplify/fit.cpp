@@ -1,4 +1,6 @@
 #include "simplify/fit.h"
+#include "construct/boundary_first.h"
+#include "core/log.h"
 
 #include "core/errors.h"
 #include "core/topology.h"
@@ -252,6 +254,39 @@ FitResult fit_polycube(const core::PolycubeMap& map, const structure::PolycubeSt
     res.untangle_iterations = ur.iterations;
     const Eigen::VectorXd x = red.apply(y);
     for (int v = 0; v < nv; ++v) pos[v] = x.segment<3>(3 * v);
+    if (options.boundary_first && count_nonpositive(map.tets, pos) > 0) {
+      // The boundary first (construct/boundary_first.h): edge chains straight between their
+      // (integer) corners, charts untangled in 2D, the interior with the boundary fixed; then
+      // the free coordinates relax from that valid state (kept only if it stays valid).
+      std::vector<int> group(3 * static_cast<std::size_t>(nv), -1);
+      for (int v = 0; v < nv; ++v)
+        for (int a = 0; a < 3; ++a)
+          if (fixed[v][a]) group[3 * static_cast<std::size_t>(v) + a] = 0;
+      std::vector<int> blabels(static_cast<std::size_t>(nb));
+      for (int f = 0; f < nb; ++f) blabels[f] = 2 * baxis[f] + (bsign[f] > 0 ? 0 : 1);
+      std::vector<core::Tet> real(map.tets.begin(), map.tets.end());
+      std::vector<Vec3> placed = pos;
+      const construct::BoundaryFirstResult bf =
+          construct::place_boundary_first(old_pos, real, btris, blabels, group, placed, uo, h_ref * scale);
+      core::logger().info("fit: {} tets stay inverted; boundary-first placement {}{}", count_nonpositive(map.tets, pos),
+                          bf.valid ? "valid" : "failed: ", bf.reason);
+      if (bf.valid) {
+        for (int i = 0; i < 3 * nv; ++i)
+          if (var[i] >= 0) y[var[i]] = placed[i / 3][i % 3];
+        for (int f = 0; f < nb; ++f) {  // ghosts above their triangles' new centroids
+          const auto& t = btris[f];
+          const Vec3 c = (placed[t[0]] + placed[t[1]] + placed[t[2]]) / 3.0;
+          for (int d = 0; d < 3; ++d)
+            if (var[3 * (nv + f) + d] >= 0) y[var[3 * (nv + f) + d]] = c[d];
+        }
+        const auto relaxed = solve::untangle(elements, red, y, uo);
+        res.untangle_iterations += relaxed.iterations;
+        const Eigen::VectorXd xr = red.apply(y);
+        std::vector<Vec3> trial(static_cast<std::size_t>(nv));
+        for (int v = 0; v < nv; ++v) trial[v] = xr.segment<3>(3 * v);
+        pos = count_nonpositive(map.tets, trial) == 0 ? trial : placed;
+      }
+    }
   }
   res.seconds_untangle = since(t_unt);
 

@@ -28,6 +28,9 @@ namespace polycube::simplify {
 struct FitOptions {
   int max_iterations = 200;   //!< outer iterations of the untangler
   bool untangle = true;       //!< false: only the initial placement (for tests)
+  //! When tets stay inverted after the untangling, place the boundary first
+  //! (construct/boundary_first.h) and untangle again from there.
+  bool boundary_first = true;
 };
 
 //! Result of fit_polycube().
