@@ -28,7 +28,7 @@ test: build
 	@ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) --timeout 600 -LE heavy
 
 # The construction of the large shared models (cup, bunny, rocker-arm, moai, max-planck),
-# certified and simplified: about 10 minutes on 2 cores.
+# certified and simplified: about 12 minutes on 2 cores.
 test-heavy: build
 	@ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) --timeout 1200 -L heavy
 

@@ -1,5 +1,5 @@
 // Whole construction on the large shapes of ../shared/data (label "heavy", not in `make test`:
-// about 10 minutes in all; `make test-heavy` runs them). Each map is accepted by the independent
+// about 12 minutes on 2 cores; `make test-heavy` runs them). Each map is accepted by the independent
 // certifier and its simplification is certified (construct/model_checks.h).
 #include "construct/model_checks.h"
 
