@@ -84,6 +84,7 @@ void run_optimize(const OptimizeCliOptions& o) {
                 {"nonpositive_scaled_jacobian", check.nonpositive_scaled_jacobian},
                 {"boundary_self_intersections", check.boundary_self_intersections},
                 {"seconds", check_seconds}};
+  for (const core::Vec3& c : check.crossings) j["check"]["crossings"].push_back({c.x(), c.y(), c.z()});
   j["seconds"] = r.seconds + check_seconds;
   std::string text = fmt::format("{}: {} hexes, target {}\n", o.input, mesh.num_cells(), o.target);
   text += fmt::format("  {:<10}{:>10}{:>10}\n", "", "before", "after");
@@ -165,6 +166,11 @@ void register_optimize(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--cg-iterations", oo.cg_iterations, "CG iterations per Newton step (large meshes)")
       ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->add_option("--boundary-barrier", oo.boundary_barrier,
+                  "Weight of the barrier that keeps boundary quads facing the target's side, so the boundary cannot "
+                  "fold over itself (0: off)")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   sub->add_flag("--no-features", opts->no_features, "Do not preserve sharp features (surface attraction only)");
   sub->add_flag("--keep-failed", opts->keep_failed,

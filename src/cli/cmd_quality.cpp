@@ -53,6 +53,8 @@ std::string histogram_text(const quality::ScaledJacobianSummary& s) {
   return t;
 }
 
+nlohmann::json point_json(const core::Vec3& p) { return {p.x(), p.y(), p.z()}; }
+
 nlohmann::json distance_json(const quality::SurfaceDistance& d) {
   return {{"hausdorff", d.hausdorff},
           {"hausdorff_upper_bound", d.hausdorff_upper},
@@ -61,16 +63,22 @@ nlohmann::json distance_json(const quality::SurfaceDistance& d) {
           {"mesh_to_target", d.surface_to_reference.max},
           {"target_to_mesh", d.reference_to_surface.max},
           {"mean_mesh_to_target", d.surface_to_reference.mean},
-          {"mean_target_to_mesh", d.reference_to_surface.mean}};
+          {"mean_target_to_mesh", d.reference_to_surface.mean},
+          {"mesh_to_target_worst_point", point_json(d.surface_to_reference.worst_point)},
+          {"target_to_mesh_worst_point", point_json(d.reference_to_surface.worst_point)}};
 }
 
 std::string distance_text(const quality::SurfaceDistance& d) {
   return fmt::format(
       "  Hausdorff distance to the target {:.6g} ({:.4f}% of its bounding-box diagonal), "
       "at most {:.6g}\n"
-      "    mesh -> target {:.6g} (mean {:.3g}), target -> mesh {:.6g} (mean {:.3g})\n",
-      d.hausdorff, 100.0 * d.relative, d.hausdorff_upper, d.surface_to_reference.max,
-      d.surface_to_reference.mean, d.reference_to_surface.max, d.reference_to_surface.mean);
+      "    mesh -> target {:.6g} (mean {:.3g}, worst at ({:.4g}, {:.4g}, {:.4g})), target -> mesh {:.6g} "
+      "(mean {:.3g}, worst at ({:.4g}, {:.4g}, {:.4g}))\n",
+      d.hausdorff, 100.0 * d.relative, d.hausdorff_upper, d.surface_to_reference.max, d.surface_to_reference.mean,
+      d.surface_to_reference.worst_point.x(), d.surface_to_reference.worst_point.y(),
+      d.surface_to_reference.worst_point.z(), d.reference_to_surface.max, d.reference_to_surface.mean,
+      d.reference_to_surface.worst_point.x(), d.reference_to_surface.worst_point.y(),
+      d.reference_to_surface.worst_point.z());
 }
 
 void write_vtk(const std::string& path, core::MeshData data, std::vector<core::Field> fields) {

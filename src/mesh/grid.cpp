@@ -128,6 +128,14 @@ std::array<std::vector<long long>, 3> snapped_levels(const Arrangement& arr, dou
   return out;
 }
 
+//! Are all chart planes at integer coordinates (within tol)?
+bool integer_levels(const Arrangement& arr, double tol) {
+  for (const auto& levels : arr.level)
+    for (double l : levels)
+      if (std::abs(l - std::round(l)) > tol) return false;
+  return true;
+}
+
 //! Hex and boundary quad counts of the snapped lattice (as doubles: used to choose the scale).
 std::array<double, 2> counts_at(const Arrangement& arr, double s) {
   const auto sn = snapped_levels(arr, s);
@@ -524,6 +532,10 @@ GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& option
     scale = choose_scale(arr, 0, options.target_hexes);
   else if (options.target_quads > 0)
     scale = choose_scale(arr, 1, options.target_quads);
+  // An integer polycube (simplified) keeps every plane distinct and every alignment at any scale
+  // >= 1 (rounding is monotone and round(x + 1) = round(x) + 1): never go below 1 for it.
+  if (options.scale <= 0.0 && (options.target_hexes > 0 || options.target_quads > 0) && integer_levels(arr, tol))
+    scale = std::max(scale, 1.0);
   res.scale = scale;
   const auto sn = snapped_levels(arr, scale);
   core::logger().info("gridding: scale {:.6g}, {} x {} x {} chart planes", scale,

@@ -34,7 +34,10 @@ namespace polycube::mesh {
 //! > 0, else target_hexes when > 0, else target_quads when > 0, else scale 1.
 struct GridOptions {
   double scale = 0.0;    //!< lattice cells per polycube unit (> 0), or 0 to choose it
-  int target_hexes = 0;  //!< choose the scale whose hex count is closest to this
+  //! Choose the scale whose hex count is closest to this. A polycube whose chart planes are all
+  //! at integers (a simplified one) is then never scaled below 1: at any scale >= 1 its planes
+  //! stay distinct and its alignments exact.
+  int target_hexes = 0;
   int target_quads = 0;  //!< choose the scale whose boundary quad count is closest to this
   //! Locate every lattice point (hex and quad meshes); false: only the boundary lattice points
   //! (quad meshes only; hex_model is then left empty, hex_polycube is still filled).

@@ -92,6 +92,7 @@ struct TargetSurface::Impl {
   core::TriMesh surface;
   SurfaceFeatures features;
   std::vector<Triangle3> triangles;
+  std::vector<Vec3> normals;  //!< outward unit normal of each triangle
   std::vector<Segment3> segments;
   TriTree tri_tree;
   SegTree seg_tree;
@@ -109,6 +110,15 @@ TargetSurface::TargetSurface(const core::TriMesh& surface, SurfaceFeatures featu
     if (!tri.is_degenerate()) m.triangles.push_back(tri);
   }
   if (m.triangles.empty()) throw core::InputError("target surface: no non-degenerate triangle");
+  // Outward normals: flip them all when the surface encloses a negative volume.
+  double volume6 = 0.0;
+  for (const auto& t : m.triangles) {
+    const Vec3 a = from_cgal(t[0]), b = from_cgal(t[1]), c = from_cgal(t[2]);
+    volume6 += a.dot(b.cross(c));
+    m.normals.push_back((b - a).cross(c - a).normalized());
+  }
+  if (volume6 < 0)
+    for (Vec3& n : m.normals) n = -n;
   m.tri_tree.insert(m.triangles.begin(), m.triangles.end());
   m.tri_tree.accelerate_distance_queries();
   for (const auto& e : m.features.edges)
@@ -129,6 +139,11 @@ TargetSurface::TargetSurface(TargetSurface&&) noexcept = default;
 TargetSurface& TargetSurface::operator=(TargetSurface&&) noexcept = default;
 
 Vec3 TargetSurface::closest_point(const Vec3& p) const { return from_cgal(impl_->tri_tree.closest_point(to_cgal(p))); }
+
+Vec3 TargetSurface::normal(const Vec3& p) const {
+  const auto hit = impl_->tri_tree.closest_point_and_primitive(to_cgal(p));
+  return impl_->normals[static_cast<std::size_t>(hit.second - impl_->triangles.begin())];
+}
 
 Vec3 TargetSurface::closest_feature_point(const Vec3& p) const {
   if (impl_->segments.empty()) return p;

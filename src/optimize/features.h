@@ -45,6 +45,9 @@ class TargetSurface {
 
   //! Closest point of the surface to p.
   [[nodiscard]] core::Vec3 closest_point(const core::Vec3& p) const;
+  //! Outward unit normal of the surface's triangle closest to p (outward: the surface's
+  //! orientation is flipped when its signed volume is negative).
+  [[nodiscard]] core::Vec3 normal(const core::Vec3& p) const;
   //! Closest point of the feature lines to p (p itself when there is no feature edge).
   [[nodiscard]] core::Vec3 closest_feature_point(const core::Vec3& p) const;
   //! Index into features().corners of the corner nearest to p (-1 when there is none).

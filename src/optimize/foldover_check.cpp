@@ -94,12 +94,15 @@ std::string FoldoverReport::reason() const {
   if (nonpositive_scaled_jacobian > 0)
     add(fmt::format("{} hexes have a scaled Jacobian <= 0", nonpositive_scaled_jacobian));
   if (boundary_self_intersections > 0)
-    add(fmt::format("the boundary crosses itself ({}{} intersecting triangle pairs)", boundary_self_intersections,
-                    boundary_self_intersections >= 100 ? "+" : ""));
+    add(fmt::format("the boundary crosses itself ({}{} intersecting triangle pairs{})", boundary_self_intersections,
+                    boundary_self_intersections >= 100 ? "+" : "",
+                    crossings.empty() ? std::string()
+                                      : fmt::format(", the first near ({:.4g}, {:.4g}, {:.4g})", crossings[0].x(),
+                                                    crossings[0].y(), crossings[0].z())));
   return r;
 }
 
-int count_self_intersections(const core::TriMesh& soup, int cap) {
+int count_self_intersections(const core::TriMesh& soup, int cap, std::vector<std::array<int, 2>>* where) {
   core::check_indices(soup);
   std::vector<Point3> P;
   P.reserve(soup.points.size());
@@ -121,7 +124,9 @@ int count_self_intersections(const core::TriMesh& soup, int cap) {
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   int count = 0;
   for (const auto& pr : pairs) {
-    if (triangles_cross(soup.cells[pr[0]], soup.cells[pr[1]], P)) ++count;
+    if (!triangles_cross(soup.cells[pr[0]], soup.cells[pr[1]], P)) continue;
+    ++count;
+    if (where) where->push_back(pr);
     if (count >= cap) break;
   }
   return count;
@@ -149,7 +154,13 @@ FoldoverReport check_foldover(const core::HexMesh& mesh, const FoldoverOptions& 
   const core::HexBoundary b = core::boundary(mesh);
   const core::TriMesh tris = quality::triangulate(b.surface);
   r.boundary_triangles = tris.num_cells();
-  r.boundary_self_intersections = count_self_intersections(tris, options.max_reported_intersections);
+  std::vector<std::array<int, 2>> pairs;
+  r.boundary_self_intersections = count_self_intersections(tris, options.max_reported_intersections, &pairs);
+  auto centroid = [&tris](int f) {
+    const auto& t = tris.cells[f];
+    return core::Vec3((tris.points[t[0]] + tris.points[t[1]] + tris.points[t[2]]) / 3.0);
+  };
+  for (const auto& pr : pairs) r.crossings.push_back(0.5 * (centroid(pr[0]) + centroid(pr[1])));
   return r;
 }
 

@@ -6,7 +6,9 @@
 
 #include "core/types.h"
 
+#include <array>
 #include <string>
+#include <vector>
 
 namespace polycube::optimize {
 
@@ -29,6 +31,9 @@ struct FoldoverReport {
   //! Pairs of boundary triangles that intersect other than in their shared vertices or edge
   //! (capped at FoldoverOptions::max_reported_intersections).
   int boundary_self_intersections = 0;
+  //! Where the boundary crosses itself: midpoint of the two triangles' centroids, one per
+  //! intersecting pair counted (in the order of the boundary's triangles).
+  std::vector<core::Vec3> crossings;
   [[nodiscard]] bool ok() const {
     return inverted_hexes == 0 && nonpositive_scaled_jacobian == 0 && boundary_self_intersections == 0;
   }
@@ -44,6 +49,8 @@ FoldoverReport check_foldover(const core::HexMesh& mesh, const FoldoverOptions& 
 //! Number of intersecting pairs of triangles of a triangle soup, pairs that share vertices
 //! being tested only for intersections away from what they share (at most `cap` counted).
 //! Triangles with a repeated vertex index count as intersecting nothing.
-int count_self_intersections(const core::TriMesh& soup, int cap = 100);
+//! \param where when given, receives the intersecting pairs (triangle indices, sorted)
+int count_self_intersections(const core::TriMesh& soup, int cap = 100,
+                             std::vector<std::array<int, 2>>* where = nullptr);
 
 }  // namespace polycube::optimize

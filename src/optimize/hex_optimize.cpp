@@ -6,6 +6,7 @@
 #include "core/errors.h"
 #include "core/log.h"
 #include "core/topology.h"
+#include "optimize/boundary_lift.h"
 #include "optimize/features.h"
 #include "optimize/vertex_roles.h"
 #include "solve/untangle.h"
@@ -229,8 +230,18 @@ Eigen::VectorXd variables_of(const Problem& pb, const core::HexMesh& mesh) {
   return y;
 }
 
-solve::UntangleResult run(const Problem& pb, const solve::TetElements& el, core::HexMesh& mesh,
-                          solve::UntangleOptions uo, const OptimizeOptions& o) {
+//! Optimize the mesh's points from their current positions. With o.boundary_barrier > 0 the
+//! boundary quad corners are lifted (boundary_lift.h): all of them while untangling, only those
+//! facing the target's side now during quality rounds (so the barrier never turns an
+//! optimization into an untangling).
+solve::UntangleResult run(const Problem& pb, solve::TetElements el, core::HexMesh& mesh, solve::UntangleOptions uo,
+                          const OptimizeOptions& o, bool untangling) {
+  solve::LinearReduction reduction = pb.reduction;
+  if (o.boundary_barrier > 0) {
+    const BoundaryLift lift = lift_boundary(mesh, *pb.target, pb.roles.edge_length, o.boundary_barrier, !untangling);
+    append(el, lift.elements);
+    reduction = with_apexes(pb.reduction, lift);
+  }
   uo.attractions = pb.attractions;
   if (pb.reduction.num_variables() > o.cholesky_max_variables) {
     uo.linear_solver = solve::NewtonSolver::ConjugateGradient;
@@ -241,8 +252,10 @@ solve::UntangleResult run(const Problem& pb, const solve::TetElements& el, core:
     return true;
   };
   Eigen::VectorXd y = variables_of(pb, mesh);
-  const solve::UntangleResult r = solve::untangle(el, pb.reduction, y, uo);
-  mesh.points = solve::unflatten(pb.reduction.apply(y));
+  const solve::UntangleResult r = solve::untangle(el, reduction, y, uo);
+  std::vector<Vec3> points = solve::unflatten(reduction.apply(y));
+  points.resize(mesh.points.size());  // drop the apexes
+  mesh.points = std::move(points);
   return r;
 }
 
@@ -296,7 +309,7 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
     uo.initial_epsilon = 1.0;
     uo.stop_when_untangled = true;
     uo.stall_iterations = 30;
-    const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o);
+    const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o, true);
     add(res.untangle, r);
     core::logger().info("optimize: untangling {} iterations, {} -> {} inverted corners", r.iterations,
                         r.inverted_before, r.inverted_after);
@@ -337,7 +350,7 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
     }
     const solve::UntangleOptions uo = quality_options(o.quality_iterations);
     mesh.points = best_points;
-    const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o);
+    const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o, false);
     add(res.quality, r);
     const quality::ScaledJacobianSummary s = summary(mesh, true);
     const int inv = inverted_corners(mesh);
@@ -370,7 +383,7 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
     pb.set_weights(mesh, size, o.surface_weight);
     mesh.points = start_points;
     const solve::UntangleOptions uo = quality_options(o.quality_iterations * std::max(1, o.quality_rounds));
-    const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o);
+    const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o, false);
     add(res.quality, r);
     if (inverted_corners(mesh) > 0) {  // never trade validity for the surface
       mesh.points = best_points;

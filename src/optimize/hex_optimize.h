@@ -50,6 +50,10 @@ struct OptimizeOptions {
   //! by truncated conjugate gradients (a factorization grows too costly on large meshes).
   int cholesky_max_variables = 30000;
   int cg_iterations = 100;  //!< CG iterations per Newton step (large meshes)
+  //! Weight of the boundary orientation barrier (optimize/boundary_lift.h) relative to a hex
+  //! corner: boundary quad corners lifted along the target normal must stay positive, so the
+  //! boundary cannot fold over itself between positive hexes. 0 turns it off.
+  double boundary_barrier = 1.0;
   //! After the quality rounds and the final snap, a boundary vertex farther than this many
   //! local edge lengths from the target gets a 16 times stiffer attraction and the quality
   //! optimization runs again (at most drift_retries times, off by default): the surface is

@@ -130,7 +130,6 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   });
 
   // 3. simplification
-  bool integer_map = false;
   if (o.simplify)
     run.stage("simplify", [&] {
       // The lattice of the simplification is the coarsest hex mesh: when the target asks for
@@ -161,20 +160,14 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
       wrote(out_dir / "simplify" / "model.mesh");
       wrote(out_dir / "simplify" / "polycube.mesh");
       map = s.fit.map;
-      integer_map = true;
     });
 
-  // 4. gridding: the simplified polycube has integer corners, so it is scaled by an integer
-  //    (its alignment is kept exactly); the unsimplified one by the scale nearest the target.
+  // 4. gridding at the scale nearest the target (an integer polycube is never scaled below 1,
+  //    so the simplified planes stay distinct and aligned: mesh/grid.h).
   core::HexMesh hex;
   run.stage("hexmesh", [&] {
     mesh::GridOptions go;
-    if (integer_map) {
-      const double vol = polycube_volume(map);
-      go.scale = std::max(1.0, std::round(std::cbrt(o.target_hexes / std::max(vol, 1.0))));
-    } else {
-      go.target_hexes = o.target_hexes;
-    }
+    go.target_hexes = o.target_hexes;
     mesh::GridResult g = mesh::grid_polycube(map, go);
     if (!g.snapping.ok())
       throw core::GeometryError("snapping the polycube to the lattice broke it: " + g.snapping.summary());

@@ -274,6 +274,26 @@ GridMap step_03() {
       [](const Vec3& c) { return c.z() < 1 || c.x() < 1; }, [](const Vec3& p) { return p; });
 }
 
+TEST(Grid, IntegerPolycubeIsNeverScaledBelowOne) {
+  // the L's planes are at integers (a simplified polycube): a target below its 3 unit cells
+  // would merge planes at a scale < 1, so the scale stays 1 and the structure is kept
+  const GridMap g = test::l_shape(2);
+  for (int target : {1, 2}) {
+    GridOptions o;
+    o.target_hexes = target;
+    const GridResult r = grid_polycube(g.map, o);
+    EXPECT_EQ(r.scale, 1.0);
+    EXPECT_TRUE(r.snapping.ok());
+    EXPECT_EQ(r.snapping.collapsed_levels, 0);
+    EXPECT_EQ(r.hex_polycube.cells.size(), static_cast<std::size_t>(test::kLVolume));
+  }
+  // a polycube with a plane off the integers may go below 1 (and is reported when it breaks)
+  GridOptions o;
+  o.target_hexes = 1;
+  const GridResult r = grid_polycube(step_03().map, o);
+  EXPECT_LT(r.scale, 1.0);
+}
+
 int count_kind(const SnapReport& r, DefectKind k) {
   return static_cast<int>(std::count_if(r.defects.begin(), r.defects.end(),
                                         [&](const SnapDefect& d) { return d.kind == k; }));

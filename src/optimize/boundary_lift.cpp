@@ -1,0 +1,90 @@
+//! Lifted boundary quad corners: an orientation barrier for the hex boundary (see
+//! boundary_lift.h).
+#include "optimize/boundary_lift.h"
+
+#include "core/errors.h"
+#include "core/topology.h"
+
+#include <Eigen/Geometry>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+
+namespace polycube::optimize {
+
+using core::Vec3;
+
+BoundaryLift lift_boundary(const core::HexMesh& mesh, const TargetSurface& target,
+                           const std::vector<double>& edge_length, double weight, bool only_positive) {
+  PC_REQUIRE(edge_length.size() == mesh.points.size(), "lift_boundary: one edge length per vertex");
+  const core::HexBoundary b = core::boundary(mesh);
+  const auto& quads = b.surface.cells;
+  // Target normal at each quad's centre (queries in parallel, results in quad order).
+  std::vector<Vec3> normal(quads.size());
+  tbb::parallel_for(std::size_t{0}, quads.size(), [&](std::size_t f) {
+    Vec3 c = Vec3::Zero();
+    for (int s : quads[f]) c += mesh.points[b.vertex_map[s]];
+    normal[f] = target.normal(c / 4.0);
+  });
+  BoundaryLift lift;
+  const int nv = mesh.num_points();
+  for (std::size_t f = 0; f < quads.size(); ++f)
+    for (int i = 0; i < 4; ++i) {
+      const int v = b.vertex_map[quads[f][i]];
+      const int p = b.vertex_map[quads[f][(i + 1) % 4]];
+      const int q = b.vertex_map[quads[f][(i + 3) % 4]];
+      const Vec3 ep = mesh.points[p] - mesh.points[v];
+      const Vec3 eq = mesh.points[q] - mesh.points[v];
+      const double h = edge_length[v] > 0 ? edge_length[v] : std::max(ep.norm(), eq.norm());
+      if (!(h > 0)) continue;
+      if (only_positive && !(normal[f].dot(ep.cross(eq)) > 0)) {
+        ++lift.skipped;
+        continue;
+      }
+      const double lp = std::max(ep.norm(), 0.05 * h);
+      const double lq = std::max(eq.norm(), 0.05 * h);
+      const int apex = nv + static_cast<int>(lift.base.size());
+      lift.base.push_back(v);
+      lift.offset.push_back(h * normal[f]);
+      Eigen::Matrix<double, 4, 3> G = Eigen::Matrix<double, 4, 3>::Zero();
+      const double l[3] = {lp, lq, h};
+      for (int d = 0; d < 3; ++d) {
+        G(d + 1, d) = 1.0 / l[d];
+        G(0, d) = -1.0 / l[d];
+      }
+      lift.elements.tets.push_back({v, p, q, apex});
+      lift.elements.gradients.push_back(G);
+      lift.elements.weights.push_back(weight * lp * lq * h / 6.0);
+    }
+  return lift;
+}
+
+solve::LinearReduction with_apexes(const solve::LinearReduction& r, const BoundaryLift& lift) {
+  const auto rows = static_cast<Eigen::Index>(r.B.rows());
+  const auto extra = static_cast<Eigen::Index>(3 * lift.base.size());
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(static_cast<std::size_t>(r.B.nonZeros()) * 2);
+  for (Eigen::Index i = 0; i < rows; ++i)
+    for (decltype(r.B)::InnerIterator it(r.B, i); it; ++it) trip.emplace_back(i, it.col(), it.value());
+  solve::LinearReduction out;
+  out.x0.resize(rows + extra);
+  out.x0.head(rows) = r.x0;
+  for (std::size_t k = 0; k < lift.base.size(); ++k)
+    for (int d = 0; d < 3; ++d) {
+      const Eigen::Index src = 3 * static_cast<Eigen::Index>(lift.base[k]) + d;
+      const Eigen::Index dst = rows + 3 * static_cast<Eigen::Index>(k) + d;
+      for (decltype(r.B)::InnerIterator it(r.B, src); it; ++it) trip.emplace_back(dst, it.col(), it.value());
+      out.x0[dst] = r.x0[src] + lift.offset[k][d];
+    }
+  out.B.resize(rows + extra, r.B.cols());
+  out.B.setFromTriplets(trip.begin(), trip.end());
+  return out;
+}
+
+void append(solve::TetElements& to, const solve::TetElements& from) {
+  to.tets.insert(to.tets.end(), from.tets.begin(), from.tets.end());
+  to.gradients.insert(to.gradients.end(), from.gradients.begin(), from.gradients.end());
+  to.weights.insert(to.weights.end(), from.weights.begin(), from.weights.end());
+}
+
+}  // namespace polycube::optimize
