@@ -131,9 +131,9 @@ void register_optimize(CLI::App& app) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   sub->add_option("--max-drift", oo.drift_diagonal,
-                  "Boundary vertices farther than this fraction of the target's bounding-box diagonal (or than 0.25 "
-                  "edge lengths, whichever is smaller) from it after the quality rounds get a stiffer attraction and the "
-                  "optimization runs again: larger keeps more of the mSJ, smaller keeps the surface (thesis bound: 0.009)")
+                  "Boundary vertices farther than this fraction of the target's bounding-box diagonal from it after the "
+                  "quality rounds get a stiffer attraction and the optimization runs again: larger keeps more of the "
+                  "mSJ, smaller keeps the surface (thesis bound: 0.009)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   sub->add_option("--drift-retries", oo.drift_retries,

@@ -24,10 +24,6 @@ int axes_mask(const std::vector<int>& vertex_group, int v) {
   return m;
 }
 
-bool positive(const std::vector<Vec3>& P, const core::Tet& c) {
-  return (P[c[1]] - P[c[0]]).dot((P[c[2]] - P[c[0]]).cross(P[c[3]] - P[c[0]])) > 0;
-}
-
 //! Step 1: every chain of boundary vertices along a polycube edge (boundary edges between two
 //! charts) onto the segment between its end corners, at the model's arc-length fractions.
 //! Returns the number of chains, or a negative number with `reason` set.
@@ -196,7 +192,7 @@ BoundaryFirstResult place_boundary_first(const std::vector<Vec3>& points, const 
       if (!on_boundary[v])
         for (int d = 0; d < 3; ++d) var[3 * static_cast<std::size_t>(v) + d] = n++;
     for (const auto& c : tets)
-      if (on_boundary[c[0]] && on_boundary[c[1]] && on_boundary[c[2]] && on_boundary[c[3]] && !positive(Q, c))
+      if (on_boundary[c[0]] && on_boundary[c[1]] && on_boundary[c[2]] && on_boundary[c[3]] && !core::positive_tet(Q, c))
         ++res.locked_inverted;
     if (res.locked_inverted > 0) {
       res.reason = fmt::format("{} tets with all vertices on the boundary are inverted", res.locked_inverted);
@@ -211,7 +207,7 @@ BoundaryFirstResult place_boundary_first(const std::vector<Vec3>& points, const 
     for (int v = 0; v < nv; ++v)
       if (!on_boundary[v]) Q[v] = x.segment<3>(3 * v);
     for (const auto& c : tets) {
-      if (positive(Q, c)) continue;
+      if (core::positive_tet(Q, c)) continue;
       ++res.tets_inverted;
       if (res.tets_inverted <= 10) {
         int nb_v = 0;

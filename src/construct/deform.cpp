@@ -398,10 +398,6 @@ solve::UntangleResult untangle_with_ghosts(const core::TetMesh& mesh, const Labe
 }
 
 //! Tet c has a positive volume in P.
-bool positive(const std::vector<Vec3>& P, const core::Tet& c) {
-  return (P[c[1]] - P[c[0]]).dot((P[c[2]] - P[c[0]]).cross(P[c[3]] - P[c[0]])) > 0;
-}
-
 //! Boundary triangles of lb facing away from their label in P.
 int facing_away(const LabeledBoundary& lb, const std::vector<Vec3>& P) {
   int n = 0;
@@ -412,7 +408,7 @@ int facing_away(const LabeledBoundary& lb, const std::vector<Vec3>& P) {
 //! Failures of a polycube P: tets with det <= 0 and boundary triangles facing away from their label.
 int failures(const core::TetMesh& mesh, const LabeledBoundary& lb, const std::vector<Vec3>& P) {
   int n = facing_away(lb, P);
-  for (const auto& c : mesh.cells) n += !positive(P, c);
+  for (const auto& c : mesh.cells) n += !core::positive_tet(P, c);
   return n;
 }
 
@@ -437,7 +433,7 @@ int untangle_locally(const core::TetMesh& mesh, const LabeledBoundary& lb, const
   const int nv = mesh.num_points();
   std::vector<char> in(static_cast<std::size_t>(nv), 0);
   for (const auto& c : mesh.cells)
-    if (!positive(P, c))
+    if (!core::positive_tet(P, c))
       for (int v : c) in[v] = 1;
   for (std::size_t f = 0; f < lb.tris.size(); ++f)
     if (!faces_label(P, lb.tris[f], lb.labels[f]))
@@ -617,7 +613,7 @@ DeformResult deform_to_polycube(const core::TetMesh& input, const std::vector<Tr
     std::vector<Vec3> snapped(static_cast<std::size_t>(nv));
     for (int v = 0; v < nv; ++v)
       for (int d = 0; d < 3; ++d) snapped[v][d] = y[var[3 * static_cast<std::size_t>(v) + d]];
-    for (const auto& c : mesh.cells) res.inverted_after_linear += !positive(snapped, c);
+    for (const auto& c : mesh.cells) res.inverted_after_linear += !core::positive_tet(snapped, c);
     core::logger().info("deform: planarity flow: {} iterations, plane residual {:.3g} edge lengths, {} inverted "
                         "({} tets inverted and {} boundary triangles facing away after the snap), {:.2f} s",
                         fr.iterations, fr.residual, fr.inverted, res.inverted_after_linear, facing_away(lb, snapped),

@@ -167,7 +167,7 @@ PredeformResult predeform(const core::TetMesh& mesh, const std::vector<core::Tri
     if (res.misalignment_after < o.tolerance) break;
   }
   for (const auto& c : mesh.cells)
-    res.inverted += !((X[c[1]] - X[c[0]]).dot((X[c[2]] - X[c[0]]).cross(X[c[3]] - X[c[0]])) > 0);
+    res.inverted += !core::positive_tet(X, c);
   res.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return res;
 }

@@ -1,5 +1,7 @@
 #include "core/types.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 
 namespace polycube::core {
@@ -55,6 +57,10 @@ template MeshData to_mesh_data(const TriMesh&);
 template MeshData to_mesh_data(const QuadMesh&);
 template MeshData to_mesh_data(const TetMesh&);
 template MeshData to_mesh_data(const HexMesh&);
+
+bool positive_tet(const std::vector<Vec3>& P, const Tet& c) {
+  return (P[c[1]] - P[c[0]]).dot((P[c[2]] - P[c[0]]).cross(P[c[3]] - P[c[0]])) > 0;
+}
 
 BoundingBox bounding_box(const std::vector<Vec3>& points) {
   BoundingBox b;

@@ -121,4 +121,7 @@ struct BoundingBox {
 //! Bounding box of points (all zero when empty).
 BoundingBox bounding_box(const std::vector<Vec3>& points);
 
+//! Is tet c strictly positively oriented at positions P (floating point, not an exact predicate)?
+bool positive_tet(const std::vector<Vec3>& P, const Tet& c);
+
 }  // namespace polycube::core

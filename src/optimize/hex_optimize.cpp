@@ -174,17 +174,23 @@ struct Problem {
     }
   }
 
-  //! Attractions whose vertex is farther than `limit` local edge lengths or `absolute` from its
-  //! target.
-  [[nodiscard]] std::vector<std::size_t> drifted(const core::HexMesh& mesh, double limit, double absolute) const {
+  //! Attractions whose vertex is farther than `absolute` from its target.
+  [[nodiscard]] std::vector<std::size_t> drifted(const core::HexMesh& mesh, double absolute) const {
     std::vector<solve::Attraction> attr = attractions;
     project(solve::flatten(mesh.points), attr);
     std::vector<std::size_t> out;
-    for (std::size_t k = 0; k < attr.size(); ++k) {
-      const double h = roles.edge_length[attr[k].vertex] > 0 ? roles.edge_length[attr[k].vertex] : 1.0;
-      if ((mesh.points[attr[k].vertex] - attr[k].target).norm() > std::min(limit * h, absolute)) out.push_back(k);
-    }
+    for (std::size_t k = 0; k < attr.size(); ++k)
+      if ((mesh.points[attr[k].vertex] - attr[k].target).norm() > absolute) out.push_back(k);
     return out;
+  }
+
+  //! Largest distance of an attracted vertex to its target.
+  [[nodiscard]] double max_drift(const core::HexMesh& mesh) const {
+    std::vector<solve::Attraction> attr = attractions;
+    project(solve::flatten(mesh.points), attr);
+    double d = 0;
+    for (const auto& a : attr) d = std::max(d, (mesh.points[a.vertex] - a.target).norm());
+    return d;
   }
 
   void project(const Eigen::VectorXd& x, std::vector<solve::Attraction>& attr) const {
@@ -271,7 +277,7 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   if (mesh.cells.empty()) throw core::InputError("hex mesh: no hexahedra");
   if (!(o.surface_weight >= 0) || o.untangle_iterations < 0 || o.quality_rounds < 0 || o.quality_iterations < 1 ||
       !(o.volume_weight > 0) || !(o.feature_angle > 0 && o.feature_angle < 180) || !(o.feature_distance > 0) ||
-      !(o.drift_limit > 0) || !(o.drift_diagonal > 0) || o.drift_retries < 0)
+      !(o.drift_diagonal > 0) || o.drift_retries < 0)
     throw core::InputError("optimize: option out of range");
   core::check_indices(mesh);
   for (const Vec3& p : mesh.points)
@@ -376,9 +382,13 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   // cavity, a third of an edge length off). Stiffen the attraction of those vertices only and
   // optimize again from the state before the rounds, until none drifts: the surface is a
   // constraint, the minimum scaled Jacobian the objective.
+  // A retry is kept only when it brings the farthest boundary vertex closer (sphere: the
+  // farthest vertex is not what the stiffer attraction fixes, and the retry only lost mSJ).
+  best_points = mesh.points;
   for (int retry = 0; retry < o.drift_retries && res.inverted_corners_before == 0; ++retry) {
-    const std::vector<std::size_t> off = pb.drifted(mesh, o.drift_limit, o.drift_diagonal * diagonal);
+    const std::vector<std::size_t> off = pb.drifted(mesh, o.drift_diagonal * diagonal);
     if (off.empty()) break;
+    const double drift_before = pb.max_drift(mesh);
     for (std::size_t k : off) pb.stiffness[k] *= 16.0;
     pb.set_weights(mesh, size, o.surface_weight);
     mesh.points = start_points;
@@ -389,8 +399,15 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
       mesh.points = best_points;
       break;
     }
-    best = summary(mesh, true);
-    pb.snap(mesh, best.min);
+    const quality::ScaledJacobianSummary s = summary(mesh, true);
+    pb.snap(mesh, s.min);
+    if (!(pb.max_drift(mesh) < drift_before)) {
+      core::logger().info("optimize: stiffer attraction on {} drifted vertices did not bring the farthest closer; "
+                          "not kept", off.size());
+      mesh.points = best_points;
+      break;
+    }
+    best = s;
     best_points = mesh.points;
     ++res.drift_retries;
     core::logger().info("optimize: {} boundary vertices drifted off the target; their attraction stiffened: mSJ {:.4f}",
