@@ -5,6 +5,7 @@
 #include "core/errors.h"
 #include "core/log.h"
 
+#include <Eigen/Geometry>
 #include <fmt/format.h>
 
 #include <algorithm>

@@ -5,6 +5,7 @@
 #include "core/log.h"
 #include "solve/untangle.h"
 
+#include <Eigen/Geometry>
 #include <fmt/format.h>
 
 #include <algorithm>

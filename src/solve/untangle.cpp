@@ -7,6 +7,7 @@
 #include "core/progress.h"
 #include "solve/sparse_solver.h"
 
+#include <Eigen/Geometry>
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/IterativeLinearSolvers>

@@ -5,6 +5,7 @@
 #include "core/polycube_map.h"
 #include "core/topology.h"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <cmath>

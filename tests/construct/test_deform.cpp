@@ -17,6 +17,7 @@
 #include "solve/sparse_solver.h"
 #include "solve/untangle.h"
 
+#include <Eigen/Geometry>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <gtest/gtest.h>
 

@@ -4,6 +4,7 @@
 #include "core/errors.h"
 #include "fixtures.h"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <algorithm>

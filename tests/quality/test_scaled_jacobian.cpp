@@ -5,6 +5,7 @@
 
 #include "quality_fixtures.h"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <cmath>
