@@ -174,22 +174,12 @@ struct Problem {
     }
   }
 
-  //! Attractions whose vertex is farther than `absolute` from its target.
-  [[nodiscard]] std::vector<std::size_t> drifted(const core::HexMesh& mesh, double absolute) const {
+  //! Distance of every attracted vertex to its target (the closest point now).
+  [[nodiscard]] std::vector<double> drift_distances(const core::HexMesh& mesh) const {
     std::vector<solve::Attraction> attr = attractions;
     project(solve::flatten(mesh.points), attr);
-    std::vector<std::size_t> out;
-    for (std::size_t k = 0; k < attr.size(); ++k)
-      if ((mesh.points[attr[k].vertex] - attr[k].target).norm() > absolute) out.push_back(k);
-    return out;
-  }
-
-  //! Largest distance of an attracted vertex to its target.
-  [[nodiscard]] double max_drift(const core::HexMesh& mesh) const {
-    std::vector<solve::Attraction> attr = attractions;
-    project(solve::flatten(mesh.points), attr);
-    double d = 0;
-    for (const auto& a : attr) d = std::max(d, (mesh.points[a.vertex] - a.target).norm());
+    std::vector<double> d(attr.size());
+    for (std::size_t k = 0; k < attr.size(); ++k) d[k] = (mesh.points[attr[k].vertex] - attr[k].target).norm();
     return d;
   }
 
@@ -386,9 +376,12 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   // farthest vertex is not what the stiffer attraction fixes, and the retry only lost mSJ).
   best_points = mesh.points;
   for (int retry = 0; retry < o.drift_retries && res.inverted_corners_before == 0; ++retry) {
-    const std::vector<std::size_t> off = pb.drifted(mesh, o.drift_diagonal * diagonal);
+    const std::vector<double> drift = pb.drift_distances(mesh);
+    std::vector<std::size_t> off;
+    for (std::size_t k = 0; k < drift.size(); ++k)
+      if (drift[k] > o.drift_diagonal * diagonal) off.push_back(k);
     if (off.empty()) break;
-    const double drift_before = pb.max_drift(mesh);
+    const double drift_before = *std::max_element(drift.begin(), drift.end());
     for (std::size_t k : off) pb.stiffness[k] *= 16.0;
     pb.set_weights(mesh, size, o.surface_weight);
     mesh.points = start_points;
@@ -401,7 +394,8 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
     }
     const quality::ScaledJacobianSummary s = summary(mesh, true);
     pb.snap(mesh, s.min);
-    if (!(pb.max_drift(mesh) < drift_before)) {
+    const std::vector<double> drift_after = pb.drift_distances(mesh);
+    if (!(*std::max_element(drift_after.begin(), drift_after.end()) < drift_before)) {
       core::logger().info("optimize: stiffer attraction on {} drifted vertices did not bring the farthest closer; "
                           "not kept", off.size());
       mesh.points = best_points;
