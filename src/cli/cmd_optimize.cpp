@@ -130,15 +130,21 @@ void register_optimize(CLI::App& app) {
   sub->add_option("--surface-weight", oo.surface_weight, "Strength of the attraction of the boundary to the target")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  sub->add_option("--max-hausdorff", oo.hausdorff_bound,
+                  "When the result's Hausdorff distance to the target exceeds this fraction of the target's "
+                  "bounding-box diagonal (thesis bound: 0.009), the optimization runs again with a stiffer attraction "
+                  "on the boundary vertices beyond --max-drift")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   sub->add_option("--max-drift", oo.drift_diagonal,
-                  "Boundary vertices farther than this fraction of the target's bounding-box diagonal from it after the "
-                  "quality rounds get a stiffer attraction and the optimization runs again: larger keeps more of the "
-                  "mSJ, smaller keeps the surface (thesis bound: 0.009)")
+                  "Boundary vertices farther than this fraction of the target's bounding-box diagonal get the stiffer "
+                  "attraction of a retry: larger keeps more of the mSJ, smaller keeps the surface")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   sub->add_option("--drift-retries", oo.drift_retries,
                   "Optimizations run again, each with a 16x stiffer attraction on the boundary vertices beyond "
-                  "--max-drift (0: off; inputs with inverted hexes never retry)")
+                  "--max-drift, while the Hausdorff distance exceeds --max-hausdorff (0: off; inputs with inverted "
+                  "hexes never retry)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--untangle-iterations", oo.untangle_iterations, "Outer iterations of the untangling at most")
@@ -171,6 +177,12 @@ void register_optimize(CLI::App& app) {
                   "Weight of the barrier that keeps boundary quads facing the target's side, so the boundary cannot "
                   "fold over itself (0: off)")
       ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  sub->add_option("--size-uniformity", oo.size_uniformity,
+                  "How far each hex's reference size moves from its input size towards one size for the whole "
+                  "mesh (0: keep the input's grading, 1: the same volume everywhere); evens out the long hexes of "
+                  "regions the polycube map compresses")
+      ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   sub->add_flag("--no-features", opts->no_features, "Do not preserve sharp features (surface attraction only)");
   sub->add_flag("--keep-failed", opts->keep_failed,

@@ -136,9 +136,83 @@ bool integer_levels(const Arrangement& arr, double tol) {
   return true;
 }
 
-//! Hex and boundary quad counts of the snapped lattice (as doubles: used to choose the scale).
-std::array<double, 2> counts_at(const Arrangement& arr, double s) {
-  const auto sn = snapped_levels(arr, s);
+//! Model-space length per polycube unit of every interval between consecutive levels, per axis
+//! (GridSizing::Map): the map's stretch along the axis, |d model / d u_a|, over the tets whose
+//! centroid lies in the slab, 95th percentile weighted by polycube volume. A slab no tet's
+//! centroid falls in takes its neighbours' (or 1).
+std::array<std::vector<double>, 3> slab_stretch(const core::PolycubeMap& map, const Arrangement& arr) {
+  struct Sample {
+    double stretch;
+    double weight;
+  };
+  std::array<std::vector<std::vector<Sample>>, 3> samples;
+  for (int a = 0; a < 3; ++a) samples[a].resize(static_cast<std::size_t>(arr.boxes(a)));
+  for (const auto& t : map.tets) {
+    Eigen::Matrix3d P;
+    Eigen::Matrix3d M;
+    for (int k = 0; k < 3; ++k) {
+      P.col(k) = map.polycube[t[k + 1]] - map.polycube[t[0]];
+      M.col(k) = map.model[t[k + 1]] - map.model[t[0]];
+    }
+    const double vol = P.determinant();
+    if (!(std::abs(vol) > 1e-14 * P.squaredNorm() * std::sqrt(P.squaredNorm()))) continue;  // flat
+    const Eigen::Matrix3d J = M * P.inverse();  // d model / d polycube
+    const Vec3 c = 0.25 * (map.polycube[t[0]] + map.polycube[t[1]] + map.polycube[t[2]] + map.polycube[t[3]]);
+    for (int a = 0; a < 3; ++a) {
+      const auto& l = arr.level[a];
+      const auto it = std::upper_bound(l.begin(), l.end(), c[a]);
+      if (it == l.begin() || it == l.end()) continue;
+      samples[a][static_cast<std::size_t>(it - l.begin() - 1)].push_back({J.col(a).norm(), std::abs(vol)});
+    }
+  }
+  std::array<std::vector<double>, 3> out;
+  for (int a = 0; a < 3; ++a) {
+    out[a].assign(samples[a].size(), -1.0);
+    for (std::size_t i = 0; i < samples[a].size(); ++i) {
+      auto& v = samples[a][i];
+      if (v.empty()) continue;
+      std::sort(v.begin(), v.end(), [](const Sample& x, const Sample& y) { return x.stretch < y.stretch; });
+      double total = 0.0;
+      for (const auto& x : v) total += x.weight;
+      double acc = 0.0;
+      out[a][i] = v.back().stretch;
+      for (const auto& x : v)
+        if ((acc += x.weight) >= 0.95 * total) {
+          out[a][i] = x.stretch;
+          break;
+        }
+    }
+    // empty slabs: nearest measured neighbour
+    for (std::size_t i = 0; i < out[a].size(); ++i)
+      if (out[a][i] < 0)
+        for (std::size_t d = 1; d < out[a].size() && out[a][i] < 0; ++d) {
+          if (i >= d && out[a][i - d] > 0) out[a][i] = out[a][i - d];
+          else if (i + d < out[a].size() && out[a][i + d] > 0) out[a][i] = out[a][i + d];
+        }
+    for (double& x : out[a])
+      if (!(x > 0) || !std::isfinite(x)) x = 1.0;
+  }
+  return out;
+}
+
+//! Integer levels with round(length * stretch * s) cells per interval, at least 1 (Map sizing).
+std::array<std::vector<long long>, 3> map_levels(const Arrangement& arr, const std::array<std::vector<double>, 3>& stretch,
+                                                 double s) {
+  std::array<std::vector<long long>, 3> out;
+  for (int a = 0; a < 3; ++a) {
+    out[a].push_back(0);
+    for (int i = 0; i < arr.boxes(a); ++i) {
+      const double cells = std::round((arr.level[a][i + 1] - arr.level[a][i]) * stretch[a][i] * s);
+      if (!(cells < 1e8))
+        throw core::InputError(fmt::format("scale {:.6g} puts the polycube outside the integer lattice's range", s));
+      out[a].push_back(out[a].back() + std::max(1LL, static_cast<long long>(cells)));
+    }
+  }
+  return out;
+}
+
+//! Hex and boundary quad counts of the lattice with these integer levels.
+std::array<double, 2> counts_of(const Arrangement& arr, const std::array<std::vector<long long>, 3>& sn) {
   std::array<std::vector<double>, 3> len;
   for (int a = 0; a < 3; ++a)
     for (std::size_t i = 0; i + 1 < sn[a].size(); ++i)
@@ -158,13 +232,18 @@ std::array<double, 2> counts_at(const Arrangement& arr, double s) {
   return {hexes, quads};
 }
 
-//! Scale whose count (0: hexes, 1: quads) is closest to target.
-double choose_scale(const Arrangement& arr, int which, double target) {
+//! Scale whose count (0: hexes, 1: quads) is closest to target. `stretch` (may be null) weighs
+//! each interval's length (Map sizing); levels(s) gives the integer levels at scale s.
+template <class Levels>
+double choose_scale(const Arrangement& arr, int which, double target, const std::array<std::vector<double>, 3>* stretch,
+                    const Levels& levels) {
   double measure = 0.0;  // volume or area at scale 1 without rounding
   for (int k = -1; k < arr.boxes(2); ++k)
     for (int j = -1; j < arr.boxes(1); ++j)
       for (int i = -1; i < arr.boxes(0); ++i) {
-        auto len = [&](int a, int x) { return arr.level[a][x + 1] - arr.level[a][x]; };
+        auto len = [&](int a, int x) {
+          return (arr.level[a][x + 1] - arr.level[a][x]) * (stretch ? (*stretch)[a][x] : 1.0);
+        };
         const bool in = arr.is_inside(i, j, k);
         if (which == 0) {
           if (in) measure += len(0, i) * len(1, j) * len(2, k);
@@ -182,7 +261,7 @@ double choose_scale(const Arrangement& arr, int which, double target) {
   // bisection for the smallest scale reaching the target, then the closer of the two sides
   double lo = s0 / 4.0;
   double hi = s0 * 4.0;
-  auto count = [&](double s) { return counts_at(arr, s)[which]; };
+  auto count = [&](double s) { return counts_of(arr, levels(s))[which]; };
   while (count(lo) >= target && lo > 1e-12) lo /= 2.0;
   while (count(hi) < target && hi < 1e12) hi *= 2.0;
   for (int it = 0; it < 60; ++it) {
@@ -524,29 +603,35 @@ GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& option
   core::logger().debug("gridding: structure, locator and arrangement {:.3f} s",
                        seconds_since(t_start));
 
-  // 1. the scale
+  // 1. the scale (and, with Map sizing, the cells of every interval)
+  const bool by_map = options.sizing == GridSizing::Map;
+  std::array<std::vector<double>, 3> stretch;
+  if (by_map) stretch = slab_stretch(map, arr);
+  auto levels_at = [&](double sc) { return by_map ? map_levels(arr, stretch, sc) : snapped_levels(arr, sc); };
   double scale = 1.0;
   if (options.scale > 0.0)
     scale = options.scale;
   else if (options.target_hexes > 0)
-    scale = choose_scale(arr, 0, options.target_hexes);
+    scale = choose_scale(arr, 0, options.target_hexes, by_map ? &stretch : nullptr, levels_at);
   else if (options.target_quads > 0)
-    scale = choose_scale(arr, 1, options.target_quads);
+    scale = choose_scale(arr, 1, options.target_quads, by_map ? &stretch : nullptr, levels_at);
   // An integer polycube (simplified) keeps every plane distinct and every alignment at any scale
   // >= 1 (rounding is monotone and round(x + 1) = round(x) + 1): never go below 1 for it.
-  if (options.scale <= 0.0 && (options.target_hexes > 0 || options.target_quads > 0) && integer_levels(arr, tol))
+  if (!by_map && options.scale <= 0.0 && (options.target_hexes > 0 || options.target_quads > 0) &&
+      integer_levels(arr, tol))
     scale = std::max(scale, 1.0);
   res.scale = scale;
-  const auto sn = snapped_levels(arr, scale);
-  core::logger().info("gridding: scale {:.6g}, {} x {} x {} chart planes", scale,
-                      arr.level[0].size(), arr.level[1].size(), arr.level[2].size());
+  const auto sn = levels_at(scale);
+  core::logger().info("gridding: {} {:.6g}, {} x {} x {} chart planes", by_map ? "cells per model length" : "scale",
+                      scale, arr.level[0].size(), arr.level[1].size(), arr.level[2].size());
 
-  // 2. snapping: how far the levels move, whether some collapse
+  // 2. snapping: how far the levels move, whether some collapse (Map sizing: none do; the
+  // per-interval counts place every level, the polycube is not scaled but mapped per axis)
   SnapReport& rep = res.snapping;
   const double tol_lattice = tol * scale;
   for (int a = 0; a < 3; ++a) {
     rep.levels[a] = static_cast<int>(arr.level[a].size());
-    for (std::size_t i = 0; i < sn[a].size(); ++i) {
+    for (std::size_t i = 0; i < sn[a].size() && !by_map; ++i) {
       rep.max_displacement = std::max(
           rep.max_displacement, std::abs(static_cast<double>(sn[a][i]) - arr.level[a][i] * scale));
       if (i > 0 && sn[a][i] <= sn[a][i - 1]) ++rep.collapsed_levels;
@@ -555,7 +640,7 @@ GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& option
   rep.needed = rep.max_displacement > tol_lattice;
   const SnapContext ctx{s, arr, sn, scale};
   for (const auto& c : s.corners)
-    if ((snap_point(ctx, c.position) - c.position * scale).cwiseAbs().maxCoeff() > tol_lattice)
+    if (!by_map && (snap_point(ctx, c.position) - c.position * scale).cwiseAbs().maxCoeff() > tol_lattice)
       ++rep.corners_moved;
   rep.deformed = rep.collapsed_levels > 0;
 

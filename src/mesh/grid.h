@@ -30,9 +30,25 @@
 
 namespace polycube::mesh {
 
+//! How many lattice cells each interval between consecutive chart planes gets.
+enum class GridSizing {
+  //! Proportional to its polycube length (one scale for the whole polycube; thesis §2.1): hexes
+  //! are cubes in polycube space and inherit the map's distortion in model space.
+  Uniform,
+  //! Proportional to its length in model space: the interval's polycube length times the map's
+  //! stretch along that axis over the slab between the two planes (95th percentile over the
+  //! slab's tets, weighted by volume), at least one cell. Where the map compresses the model
+  //! the slab gets more cells, where it expands it fewer, so hexes are closer to one size in
+  //! model space. Every chart plane still lands on an integer: no snapping, no defect.
+  Map
+};
+
 //! Options of the gridding. Exactly one way of choosing the resolution applies: scale when
 //! > 0, else target_hexes when > 0, else target_quads when > 0, else scale 1.
 struct GridOptions {
+  //! Uniform, or cells per interval following the map (GridSizing::Map; then scale is the
+  //! number of cells per unit of model length and the hex/quad targets choose it).
+  GridSizing sizing = GridSizing::Uniform;
   double scale = 0.0;    //!< lattice cells per polycube unit (> 0), or 0 to choose it
   //! Choose the scale whose hex count is closest to this. A polycube whose chart planes are all
   //! at integers (a simplified one) is then never scaled below 1: at any scale >= 1 its planes
@@ -95,7 +111,7 @@ struct GridResult {
   core::HexMesh hex_polycube;        //!< same connectivity, lattice positions (integer coordinates)
   core::QuadMesh quad_model;         //!< boundary of the hex lattice, model positions
   core::QuadMesh quad_polycube;      //!< same connectivity, lattice positions
-  double scale = 0.0;                //!< the scale used
+  double scale = 0.0;                //!< the scale used (GridSizing::Map: cells per model length)
   std::array<int, 3> lattice_min{};  //!< integer bounding box of the snapped polycube
   std::array<int, 3> lattice_max{};
   SnapReport snapping;

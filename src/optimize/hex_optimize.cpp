@@ -9,6 +9,7 @@
 #include "optimize/boundary_lift.h"
 #include "optimize/features.h"
 #include "optimize/vertex_roles.h"
+#include "quality/surface_distance.h"
 #include "solve/untangle.h"
 
 #include <Eigen/Geometry>
@@ -78,14 +79,27 @@ solve::TetElements corner_elements(const core::HexMesh& m, const std::vector<std
   return el;
 }
 
-//! Input edge lengths of every hex corner (8 per hex, in kHexCornerNeighbors order).
-std::vector<std::array<double, 3>> corner_lengths(const core::HexMesh& m, const std::vector<double>& size) {
+//! Reference edge lengths of every hex corner (8 per hex, in kHexCornerNeighbors order): the
+//! input's, scaled per hex by (L / size)^uniformity with L such that sum (L^u size^(1-u))^3 =
+//! sum size^3 (the total reference volume stays the input's).
+std::vector<std::array<double, 3>> corner_lengths(const core::HexMesh& m, const std::vector<double>& size,
+                                                  double uniformity) {
+  std::vector<double> scale(m.cells.size(), 1.0);
+  if (uniformity > 0) {
+    double volume = 0, blended = 0;
+    for (double h : size) {
+      volume += h * h * h;
+      blended += std::pow(h, 3.0 * (1.0 - uniformity));
+    }
+    const double L = std::pow(volume / blended, 1.0 / (3.0 * uniformity));
+    for (std::size_t c = 0; c < size.size(); ++c) scale[c] = std::pow(L / size[c], uniformity);
+  }
   std::vector<std::array<double, 3>> out(m.cells.size() * 8);
   for (std::size_t c = 0; c < m.cells.size(); ++c)
     for (int i = 0; i < 8; ++i)
       for (int d = 0; d < 3; ++d) {
         const double l = (m.points[m.cells[c][core::kHexCornerNeighbors[i][d]]] - m.points[m.cells[c][i]]).norm();
-        out[8 * c + i][d] = l > 0.05 * size[c] ? l : size[c];  // collapsed edge: the hex size
+        out[8 * c + i][d] = scale[c] * (l > 0.05 * size[c] ? l : size[c]);  // collapsed edge: the hex size
       }
   return out;
 }
@@ -267,7 +281,7 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   if (mesh.cells.empty()) throw core::InputError("hex mesh: no hexahedra");
   if (!(o.surface_weight >= 0) || o.untangle_iterations < 0 || o.quality_rounds < 0 || o.quality_iterations < 1 ||
       !(o.volume_weight > 0) || !(o.feature_angle > 0 && o.feature_angle < 180) || !(o.feature_distance > 0) ||
-      !(o.drift_diagonal > 0) || o.drift_retries < 0)
+      !(o.drift_diagonal > 0) || !(o.hausdorff_bound > 0) || o.drift_retries < 0 || !(o.size_uniformity >= 0 && o.size_uniformity <= 1))
     throw core::InputError("optimize: option out of range");
   core::check_indices(mesh);
   for (const Vec3& p : mesh.points)
@@ -284,7 +298,7 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   res.target_feature_edges = static_cast<int>(target.features().edges.size());
   res.target_corners = static_cast<int>(target.features().corners.size());
   const std::vector<double> size = hex_sizes(mesh);
-  const std::vector<std::array<double, 3>> lengths = corner_lengths(mesh, size);
+  const std::vector<std::array<double, 3>> lengths = corner_lengths(mesh, size, o.size_uniformity);
   Problem pb = make_problem(mesh, target, size, o);
   res.boundary_vertices = pb.roles.surface + pb.roles.feature;
   res.feature_vertices = pb.roles.feature;
@@ -369,19 +383,20 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   // The heavier weights of the worst hexes may have pulled some of their boundary vertices off
   // the target, where the snap cannot put them back without lowering the minimum
   // (cube_minus_sphere: a vertex of the worst hex, at a concave polycube corner on the sphere
-  // cavity, a third of an edge length off). Stiffen the attraction of those vertices only and
-  // optimize again from the state before the rounds, until none drifts: the surface is a
-  // constraint, the minimum scaled Jacobian the objective.
-  // A retry is kept only when it brings the farthest boundary vertex closer (sphere: the
-  // farthest vertex is not what the stiffer attraction fixes, and the retry only lost mSJ).
+  // cavity, a third of an edge length off). When that takes the boundary beyond the Hausdorff
+  // bound, stiffen the attraction of the drifted vertices only and optimize again from the
+  // state before the rounds: the surface is a constraint, the minimum scaled Jacobian the
+  // objective. A retry is kept only when it lowers the Hausdorff distance.
   best_points = mesh.points;
+  auto hausdorff = [&] { return quality::hausdorff_distance(mesh, target_mesh).relative; };
+  double best_hausdorff = o.drift_retries > 0 && res.inverted_corners_before == 0 ? hausdorff() : 0.0;
   for (int retry = 0; retry < o.drift_retries && res.inverted_corners_before == 0; ++retry) {
+    if (best_hausdorff <= o.hausdorff_bound) break;
     const std::vector<double> drift = pb.drift_distances(mesh);
     std::vector<std::size_t> off;
     for (std::size_t k = 0; k < drift.size(); ++k)
       if (drift[k] > o.drift_diagonal * diagonal) off.push_back(k);
     if (off.empty()) break;
-    const double drift_before = *std::max_element(drift.begin(), drift.end());
     for (std::size_t k : off) pb.stiffness[k] *= 16.0;
     pb.set_weights(mesh, size, o.surface_weight);
     mesh.points = start_points;
@@ -394,18 +409,19 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
     }
     const quality::ScaledJacobianSummary s = summary(mesh, true);
     pb.snap(mesh, s.min);
-    const std::vector<double> drift_after = pb.drift_distances(mesh);
-    if (!(*std::max_element(drift_after.begin(), drift_after.end()) < drift_before)) {
-      core::logger().info("optimize: stiffer attraction on {} drifted vertices did not bring the farthest closer; "
-                          "not kept", off.size());
+    const double h = hausdorff();
+    if (!(h < best_hausdorff)) {
+      core::logger().info("optimize: stiffer attraction on {} drifted vertices did not lower the Hausdorff distance "
+                          "({:.3f} %); not kept", off.size(), 100 * h);
       mesh.points = best_points;
       break;
     }
+    core::logger().info("optimize: Hausdorff {:.3f} % above the bound; {} drifted boundary vertices stiffened: "
+                        "{:.3f} %, mSJ {:.4f}", 100 * best_hausdorff, off.size(), 100 * h, s.min);
     best = s;
+    best_hausdorff = h;
     best_points = mesh.points;
     ++res.drift_retries;
-    core::logger().info("optimize: {} boundary vertices drifted off the target; their attraction stiffened: mSJ {:.4f}",
-                        off.size(), best.min);
   }
   res.quality.seconds = seconds_since(t2);
 

@@ -168,6 +168,7 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   run.stage("hexmesh", [&] {
     mesh::GridOptions go;
     go.target_hexes = o.target_hexes;
+    go.sizing = o.grid_sizing;
     mesh::GridResult g = mesh::grid_polycube(map, go);
     if (!g.snapping.ok())
       throw core::GeometryError("snapping the polycube to the lattice broke it: " + g.snapping.summary());

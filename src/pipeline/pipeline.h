@@ -17,6 +17,7 @@
 //! (report.json and the summary table are the caller's: see RunResult.)
 
 #include "construct/construct.h"
+#include "mesh/grid.h"
 #include "optimize/hex_optimize.h"
 #include "simplify/simplify.h"
 
@@ -33,6 +34,7 @@ struct RunOptions {
   bool simplify = true;                    //!< run the simplification (corner alignment)
   simplify::SimplifyOptions simplify_options;
   int target_hexes = 20000;                //!< about this many hexes (> 0)
+  mesh::GridSizing grid_sizing = mesh::GridSizing::Uniform;  //!< cells per chart interval (mesh/grid.h)
   bool optimize = true;                    //!< optimize the gridded hex mesh
   optimize::OptimizeOptions optimize_options;
   //! Called when a stage starts: (1-based index, number of stages, name).

@@ -115,6 +115,7 @@ Assembly build_assembly(const TetElements& el, const LinearReduction& R,
   Assembly a;
   a.n = R.num_variables();
   a.elem_offset.reserve(el.tets.size() + 1);
+  a.entries.reserve(12 * el.tets.size());  // exact for an index reduction
   a.elem_offset.push_back(0);
   for (const auto& t : el.tets) {
     gather(R, t.data(), 4, a.entries);
@@ -125,40 +126,86 @@ Assembly build_assembly(const TetElements& el, const LinearReduction& R,
     gather(R, &at.vertex, 1, a.attr_entries);
     a.attr_offset.push_back(static_cast<int>(a.attr_entries.size()));
   }
-  // Pattern: upper-triangle pairs of every term plus the whole diagonal.
-  std::vector<Eigen::Triplet<double, int>> trip;
-  auto add_pairs = [&](const std::vector<Entry>& e, const std::vector<int>& off) {
-    for (std::size_t t = 0; t + 1 < off.size(); ++t)
-      for (int p = off[t]; p < off[t + 1]; ++p)
-        for (int q = off[t]; q < off[t + 1]; ++q)
-          if (e[p].col <= e[q].col) trip.emplace_back(e[p].col, e[q].col, 0.0);
+  // Pattern: upper-triangle pairs of every term plus the whole diagonal, built column by column
+  // from each term's distinct columns (a triplet list would hold every pair of every term,
+  // duplicates included: hundreds of MB on a 50k-hex mesh).
+  const auto terms = static_cast<int>(el.tets.size() + attractions.size());
+  auto term_entries = [&](int t) -> std::pair<const Entry*, const Entry*> {
+    if (t < static_cast<int>(el.tets.size())) return {a.entries.data() + a.elem_offset[t], a.entries.data() + a.elem_offset[t + 1]};
+    const int k = t - static_cast<int>(el.tets.size());
+    return {a.attr_entries.data() + a.attr_offset[k], a.attr_entries.data() + a.attr_offset[k + 1]};
   };
-  add_pairs(a.entries, a.elem_offset);
-  add_pairs(a.attr_entries, a.attr_offset);
-  for (int j = 0; j < a.n; ++j) trip.emplace_back(j, j, 0.0);
-  a.H.resize(a.n, a.n);
-  a.H.setFromTriplets(trip.begin(), trip.end());
+  std::vector<int> cols_offset(static_cast<std::size_t>(terms) + 1, 0);
+  std::vector<int> cols;
+  cols.reserve(a.entries.size() + a.attr_entries.size());
+  for (int t = 0; t < terms; ++t) {
+    const auto [b, e] = term_entries(t);
+    const std::size_t first = cols.size();
+    for (const Entry* it = b; it != e; ++it) cols.push_back(it->col);
+    std::sort(cols.begin() + static_cast<std::ptrdiff_t>(first), cols.end());
+    cols.erase(std::unique(cols.begin() + static_cast<std::ptrdiff_t>(first), cols.end()), cols.end());
+    cols_offset[static_cast<std::size_t>(t) + 1] = static_cast<int>(cols.size());
+  }
+  std::vector<int> col_terms_offset(static_cast<std::size_t>(a.n) + 1, 0);
+  for (int c : cols) ++col_terms_offset[static_cast<std::size_t>(c) + 1];
+  for (int j = 0; j < a.n; ++j) col_terms_offset[j + 1] += col_terms_offset[j];
+  std::vector<int> col_terms(cols.size());
+  {
+    std::vector<int> fill(col_terms_offset.begin(), col_terms_offset.end() - 1);
+    for (int t = 0; t < terms; ++t)
+      for (int p = cols_offset[t]; p < cols_offset[t + 1]; ++p) col_terms[fill[cols[p]]++] = t;
+  }
+  std::vector<int> outer(static_cast<std::size_t>(a.n) + 1, 0);
+  std::vector<int> inner;
+  {
+    std::vector<int> mark(static_cast<std::size_t>(a.n), -1);
+    for (int j = 0; j < a.n; ++j) {
+      const std::size_t first = inner.size();
+      inner.push_back(j);  // the diagonal, always
+      mark[j] = j;
+      for (int k = col_terms_offset[j]; k < col_terms_offset[j + 1]; ++k) {
+        const int t = col_terms[k];
+        for (int p = cols_offset[t]; p < cols_offset[t + 1] && cols[p] < j; ++p)
+          if (mark[cols[p]] != j) {
+            mark[cols[p]] = j;
+            inner.push_back(cols[p]);
+          }
+      }
+      std::sort(inner.begin() + static_cast<std::ptrdiff_t>(first), inner.end());
+      outer[j + 1] = static_cast<int>(inner.size());
+    }
+  }
+  const std::vector<double> zeros(inner.size(), 0.0);
+  a.H = Eigen::Map<const Eigen::SparseMatrix<double>>(a.n, a.n, static_cast<Eigen::Index>(inner.size()),
+                                                      outer.data(), inner.data(), zeros.data());
   a.H.makeCompressed();
-  trip.clear();
-  trip.shrink_to_fit();
-  const int* outer = a.H.outerIndexPtr();
-  const int* inner = a.H.innerIndexPtr();
+  const int* outer_ptr = a.H.outerIndexPtr();
+  const int* inner_ptr = a.H.innerIndexPtr();
   auto slot_of = [&](int r, int c) {
-    const int* b = inner + outer[c];
-    const int* e = inner + outer[c + 1];
+    const int* b = inner_ptr + outer_ptr[c];
+    const int* e = inner_ptr + outer_ptr[c + 1];
     const int* it = std::lower_bound(b, e, r);
     PC_REQUIRE(it != e && *it == r, "untangle: missing Hessian slot");
-    return static_cast<int>(it - inner);
+    return static_cast<int>(it - inner_ptr);
   };
+  // Slots of every term's upper pairs (counted first, then filled in parallel).
   auto make_slots = [&](const std::vector<Entry>& e, const std::vector<int>& off, std::vector<int>& so,
                         std::vector<int>& slots) {
-    so.assign(1, 0);
-    for (std::size_t t = 0; t + 1 < off.size(); ++t) {
+    const std::size_t count = off.size() - 1;
+    so.assign(count + 1, 0);
+    for (std::size_t t = 0; t < count; ++t) {
+      int pairs = 0;
+      for (int p = off[t]; p < off[t + 1]; ++p)
+        for (int q = off[t]; q < off[t + 1]; ++q) pairs += e[p].col <= e[q].col;
+      so[t + 1] = so[t] + pairs;
+    }
+    slots.resize(static_cast<std::size_t>(so[count]));
+    tbb::parallel_for(std::size_t{0}, count, [&](std::size_t t) {
+      int s = so[t];
       for (int p = off[t]; p < off[t + 1]; ++p)
         for (int q = off[t]; q < off[t + 1]; ++q)
-          if (e[p].col <= e[q].col) slots.push_back(slot_of(e[p].col, e[q].col));
-      so.push_back(static_cast<int>(slots.size()));
-    }
+          if (e[p].col <= e[q].col) slots[s++] = slot_of(e[p].col, e[q].col);
+    });
   };
   make_slots(a.entries, a.elem_offset, a.elem_slot_offset, a.slots);
   make_slots(a.attr_entries, a.attr_offset, a.attr_slot_offset, a.attr_slots);
@@ -368,7 +415,10 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
   // Already valid meshes need no large ε: start small so the barrier keeps them valid.
   if (st.inverted == 0) eps = std::max(o.min_epsilon, std::min(eps, 1e-3 * std::max(st.min_det, 0.0)));
 
+  const auto t_pattern = std::chrono::steady_clock::now();
   const Assembly A = build_assembly(el, R, attractions);
+  core::logger().debug("untangle: {} unknowns, {} Hessian entries, pattern {:.2f} s", A.n, A.H.nonZeros(),
+                       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_pattern).count());
   Eigen::SparseMatrix<double> H = A.H;
   SparseSpdSolver solver;
   if (o.linear_solver == NewtonSolver::Cholesky) solver.analyze(H);

@@ -294,6 +294,60 @@ TEST(Grid, IntegerPolycubeIsNeverScaledBelowOne) {
   EXPECT_LT(r.scale, 1.0);
 }
 
+TEST(Grid, MapSizingFollowsTheStretch) {
+  // model = polycube stretched 3x along x: with Map sizing each unit interval along x gets three
+  // times the cells of one along y or z, so the model hexes are cubes; the per-axis map is
+  // piecewise linear, so the positions are exact and the L's planes land on integers.
+  auto stretch = [](const Vec3& p) { return Vec3(3.0 * p.x(), p.y(), p.z()); };
+  const GridMap g = test::l_shape(2, stretch);
+  for (int target : {1200, 5000}) {
+    GridOptions o;
+    o.sizing = GridSizing::Map;
+    o.target_hexes = target;
+    const GridResult r = grid_polycube(g.map, o);
+    EXPECT_TRUE(r.snapping.ok());
+    EXPECT_EQ(r.snapping.collapsed_levels, 0);
+    const int nx = (r.lattice_max[0] - r.lattice_min[0]) / 2;  // cells per unit interval
+    const int ny = (r.lattice_max[1] - r.lattice_min[1]) / 2;
+    const int nz = r.lattice_max[2] - r.lattice_min[2];
+    EXPECT_EQ(nx, std::lround(3.0 * r.scale)) << "target " << target;
+    EXPECT_EQ(ny, std::lround(r.scale));
+    EXPECT_EQ(nz, ny);
+    EXPECT_LE(std::abs(nx - 3 * ny), 1);
+    const double n = static_cast<double>(r.hex_polycube.cells.size());
+    EXPECT_EQ(r.hex_polycube.cells.size(), static_cast<std::size_t>(3 * nx * ny * nz));
+    EXPECT_LT(std::abs(n - target) / target, 0.25) << "target " << target << " got " << n;
+    auto to_model = [&](const Vec3& q) {
+      return stretch(Vec3((q.x() - r.lattice_min[0]) / nx, (q.y() - r.lattice_min[1]) / ny,
+                          (q.z() - r.lattice_min[2]) / nz));
+    };
+    EXPECT_LT(max_error(r, to_model), 1e-9);
+    EXPECT_EQ(r.inverted_model_hexes, 0);
+    // model hexes: edges along x and along y within one rounding step of each other
+    EXPECT_LT(std::abs(3.0 / nx - 1.0 / ny), 1.0 / ny / ny + 1e-12);
+  }
+}
+
+TEST(Grid, MapSizingNeverSnaps) {
+  // step_03 has a plane at z = 1.3 (model = polycube): uniform sizing at scale 0.8 merges levels
+  // 1 and 1.3; Map sizing gives every interval at least one cell, so nothing collapses
+  GridOptions u;
+  u.scale = 0.8;
+  const GridResult ru = grid_polycube(step_03().map, u);
+  EXPECT_GT(ru.snapping.collapsed_levels, 0);
+  GridOptions m = u;
+  m.sizing = GridSizing::Map;
+  const GridResult rm = grid_polycube(step_03().map, m);
+  EXPECT_EQ(rm.snapping.collapsed_levels, 0);
+  EXPECT_TRUE(rm.snapping.ok());
+  EXPECT_EQ(rm.inverted_model_hexes, 0);
+  // one cell per unit interval in x and y, one per z interval: 2 x 1 below z = 1, 1 in the step
+  EXPECT_EQ(rm.hex_polycube.cells.size(), 3u);
+  const core::SurfaceReport rep = core::analyze_surface(rm.quad_polycube);
+  EXPECT_TRUE(rep.closed);
+  EXPECT_EQ(rep.boundary_edges, 0);
+}
+
 int count_kind(const SnapReport& r, DefectKind k) {
   return static_cast<int>(std::count_if(r.defects.begin(), r.defects.end(),
                                         [&](const SnapDefect& d) { return d.kind == k; }));
