@@ -77,6 +77,8 @@ void run_optimize(const OptimizeCliOptions& o) {
   j["untangle"] = phase_json(r.untangle);
   j["quality"] = phase_json(r.quality);
   j["quality"]["rounds_kept"] = r.rounds_accepted;
+  j["quality"]["drift_retries_kept"] = r.drift_retries;
+  j["quality"]["fit_retry_kept"] = r.fit_retry;
   j["setup_seconds"] = r.setup.seconds;
   j["check"] = {{"ok", check.ok()},
                 {"reason", check.reason()},
@@ -183,6 +185,16 @@ void register_optimize(CLI::App& app) {
                   "mesh (0: keep the input's grading, 1: the same volume everywhere); evens out the long hexes of "
                   "regions the polycube map compresses")
       ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  sub->add_option("--face-attraction", oo.face_attraction,
+                  "Weight of the attraction of each boundary quad's centre to the target, relative to a vertex's: the "
+                  "boundary fits the surface instead of interpolating it (0: off)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  sub->add_option("--fit-retry", oo.fit_retry,
+                  "When the result is still beyond --max-hausdorff, run the quality rounds again with the quad centres "
+                  "attracted with this weight (--face-attraction) and keep that if closer (0: no fit retry)")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   sub->add_flag("--no-features", opts->no_features, "Do not preserve sharp features (surface attraction only)");
   sub->add_flag("--keep-failed", opts->keep_failed,

@@ -7,6 +7,7 @@
 #include "core/log.h"
 #include "core/topology.h"
 #include "optimize/boundary_lift.h"
+#include "optimize/face_attraction.h"
 #include "optimize/features.h"
 #include "optimize/vertex_roles.h"
 #include "quality/surface_distance.h"
@@ -133,6 +134,7 @@ struct Problem {
   solve::LinearReduction reduction;
   std::vector<solve::Attraction> attractions;
   std::vector<double> stiffness;  //!< per attraction: weight factor, raised where the vertex drifted
+  std::vector<double> vertex_weight;  //!< #V attraction weight of a boundary vertex before stiffening
 
   //! Move every attraction target to the closest point of its surface or feature lines.
   //! Put every attracted vertex exactly on its target, except where that would invert a
@@ -181,11 +183,13 @@ struct Problem {
     for (std::size_t c = 0; c < mesh.cells.size(); ++c)
       for (int v : mesh.cells[c]) volume[v] += size[c] * size[c] * size[c];
     stiffness.resize(attractions.size(), 1.0);
-    for (std::size_t k = 0; k < attractions.size(); ++k) {
-      auto& a = attractions[k];
-      const double h = roles.edge_length[a.vertex] > 0 ? roles.edge_length[a.vertex] : 1.0;
-      a.weight = surface_weight * stiffness[k] * volume[a.vertex] / (h * h);
+    vertex_weight.assign(mesh.points.size(), 0.0);
+    for (std::size_t v = 0; v < mesh.points.size(); ++v) {
+      const double h = roles.edge_length[v] > 0 ? roles.edge_length[v] : 1.0;
+      vertex_weight[v] = surface_weight * volume[v] / (h * h);
     }
+    for (std::size_t k = 0; k < attractions.size(); ++k)
+      attractions[k].weight = stiffness[k] * vertex_weight[attractions[k].vertex];
   }
 
   //! Distance of every attracted vertex to its target (the closest point now).
@@ -200,8 +204,9 @@ struct Problem {
   void project(const Eigen::VectorXd& x, std::vector<solve::Attraction>& attr) const {
     tbb::parallel_for(std::size_t{0}, attr.size(), [&](std::size_t k) {
       const Vec3 p = x.segment<3>(3 * static_cast<Eigen::Index>(attr[k].vertex));
-      attr[k].target = roles.role[attr[k].vertex] == VertexRole::Feature ? target->closest_feature_point(p)
-                                                                         : target->closest_point(p);
+      const auto v = static_cast<std::size_t>(attr[k].vertex);  // beyond the mesh: a quad centre
+      attr[k].target = v < roles.role.size() && roles.role[v] == VertexRole::Feature ? target->closest_feature_point(p)
+                                                                                    : target->closest_point(p);
     });
   }
 };
@@ -245,7 +250,7 @@ Eigen::VectorXd variables_of(const Problem& pb, const core::HexMesh& mesh) {
 //! facing the target's side now during quality rounds (so the barrier never turns an
 //! optimization into an untangling).
 solve::UntangleResult run(const Problem& pb, solve::TetElements el, core::HexMesh& mesh, solve::UntangleOptions uo,
-                          const OptimizeOptions& o, bool untangling) {
+                          const OptimizeOptions& o, bool untangling, double face_weight) {
   solve::LinearReduction reduction = pb.reduction;
   if (o.boundary_barrier > 0) {
     const BoundaryLift lift = lift_boundary(mesh, *pb.target, pb.roles.edge_length, o.boundary_barrier, !untangling);
@@ -253,6 +258,20 @@ solve::UntangleResult run(const Problem& pb, solve::TetElements el, core::HexMes
     reduction = with_apexes(pb.reduction, lift);
   }
   uo.attractions = pb.attractions;
+  if (face_weight > 0) {
+    const std::vector<std::array<int, 4>> quads = boundary_quads(mesh);
+    const int base = reduction.num_points();
+    reduction = with_quad_centres(reduction, quads);
+    std::vector<solve::Attraction> centres(quads.size());
+    for (std::size_t k = 0; k < quads.size(); ++k) {
+      centres[k].vertex = base + static_cast<int>(k);
+      double w = 0;
+      for (int v : quads[k]) w += 0.25 * pb.vertex_weight[v];
+      centres[k].weight = face_weight * w;
+    }
+    pb.project(reduction.apply(variables_of(pb, mesh)), centres);
+    uo.attractions.insert(uo.attractions.end(), centres.begin(), centres.end());
+  }
   if (pb.reduction.num_variables() > o.cholesky_max_variables) {
     uo.linear_solver = solve::NewtonSolver::ConjugateGradient;
     uo.cg_iterations = o.cg_iterations;
@@ -281,7 +300,8 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   if (mesh.cells.empty()) throw core::InputError("hex mesh: no hexahedra");
   if (!(o.surface_weight >= 0) || o.untangle_iterations < 0 || o.quality_rounds < 0 || o.quality_iterations < 1 ||
       !(o.volume_weight > 0) || !(o.feature_angle > 0 && o.feature_angle < 180) || !(o.feature_distance > 0) ||
-      !(o.drift_diagonal > 0) || !(o.hausdorff_bound > 0) || o.drift_retries < 0 || !(o.size_uniformity >= 0 && o.size_uniformity <= 1))
+      !(o.drift_diagonal > 0) || !(o.hausdorff_bound > 0) || o.drift_retries < 0 || !(o.size_uniformity >= 0 && o.size_uniformity <= 1) || !(o.face_attraction >= 0) ||
+      !(o.fit_retry >= 0))
     throw core::InputError("optimize: option out of range");
   core::check_indices(mesh);
   for (const Vec3& p : mesh.points)
@@ -319,7 +339,7 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
     uo.initial_epsilon = 1.0;
     uo.stop_when_untangled = true;
     uo.stall_iterations = 30;
-    const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o, true);
+    const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o, true, o.face_attraction);
     add(res.untangle, r);
     core::logger().info("optimize: untangling {} iterations, {} -> {} inverted corners", r.iterations,
                         r.inverted_before, r.inverted_after);
@@ -330,6 +350,7 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   const auto t2 = Clock::now();
   quality::ScaledJacobianSummary best = summary(mesh, true);
   int best_inverted = inverted_corners(mesh);
+  const int start_inverted = best_inverted;
   // Keep the average: exactly when the input was valid; after untangling, within a small slack
   // (the untangled state's average is not a quality the user asked to keep).
   const double start_average = best.average - (res.untangle.iterations > 0 ? o.average_slack : 0.0);
@@ -348,38 +369,44 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
     return uo;
   };
   const double diagonal = core::bounding_box(target_mesh.points).extent().norm();
-  for (int round = 0; round < o.quality_rounds; ++round) {
-    // Heavier weights on the worst hexes (those within 0.1 of the minimum, at least 1%).
-    if (round > 0) {
-      std::vector<double> sorted = best.values;
-      const std::size_t k = std::min(sorted.size() - 1, sorted.size() / 100);
-      std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(k), sorted.end());
-      const double tau = std::max(sorted[k], best.min + 0.1);
-      for (std::size_t c = 0; c < multiplier.size(); ++c)
-        if (best.values[c] < tau) multiplier[c] *= 4.0;
+  // The quality rounds from the current points (multipliers from 1), keeping the best state.
+  auto quality_rounds = [&](double face_weight) {
+    std::fill(multiplier.begin(), multiplier.end(), 1.0);
+    for (int round = 0; round < o.quality_rounds; ++round) {
+      // Heavier weights on the worst hexes (those within 0.1 of the minimum, at least 1%).
+      if (round > 0) {
+        std::vector<double> sorted = best.values;
+        const std::size_t k = std::min(sorted.size() - 1, sorted.size() / 100);
+        std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(k), sorted.end());
+        const double tau = std::max(sorted[k], best.min + 0.1);
+        for (std::size_t c = 0; c < multiplier.size(); ++c)
+          if (best.values[c] < tau) multiplier[c] *= 4.0;
+      }
+      const solve::UntangleOptions uo = quality_options(o.quality_iterations);
+      mesh.points = best_points;
+      const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o, false, face_weight);
+      add(res.quality, r);
+      const quality::ScaledJacobianSummary s = summary(mesh, true);
+      const int inv = inverted_corners(mesh);
+      const bool better = inv < best_inverted ||
+                          (inv == best_inverted && inv > 0 && s.min > best.min) ||
+                          (inv == 0 && best_inverted == 0 && s.min > best.min && s.average >= start_average);
+      core::logger().info("optimize: quality round {}: {} iterations, mSJ {:.4f} aSJ {:.4f} inverted corners {}{}",
+                          round, r.iterations, s.min, s.average, inv, better ? "" : " (not kept)");
+      if (better) {
+        best = s;
+        best_inverted = inv;
+        best_points = mesh.points;
+        ++res.rounds_accepted;
+      }
     }
-    const solve::UntangleOptions uo = quality_options(o.quality_iterations);
     mesh.points = best_points;
-    const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o, false);
-    add(res.quality, r);
-    const quality::ScaledJacobianSummary s = summary(mesh, true);
-    const int inv = inverted_corners(mesh);
-    const bool better = inv < best_inverted ||
-                        (inv == best_inverted && inv > 0 && s.min > best.min) ||
-                        (inv == 0 && best_inverted == 0 && s.min > best.min && s.average >= start_average);
-    core::logger().info("optimize: quality round {}: {} iterations, mSJ {:.4f} aSJ {:.4f} inverted corners {}{}",
-                        round, r.iterations, s.min, s.average, inv, better ? "" : " (not kept)");
-    if (better) {
-      best = s;
-      best_inverted = inv;
-      best_points = mesh.points;
-      ++res.rounds_accepted;
-    }
-  }
-  mesh.points = best_points;
+  };
+  quality_rounds(o.face_attraction);
   // Finally put the boundary exactly on the target where that keeps every hex at or above the
-  // minimum reached (and inverts nothing).
-  pb.snap(mesh, best.min);
+  // minimum reached (and inverts nothing); not when the boundary fits the surface by its quad
+  // centres too (the vertices are then meant to be off it by a fraction of the chord).
+  if (o.face_attraction <= 0) pb.snap(mesh, best.min);
   // The heavier weights of the worst hexes may have pulled some of their boundary vertices off
   // the target, where the snap cannot put them back without lowering the minimum
   // (cube_minus_sphere: a vertex of the worst hex, at a concave polycube corner on the sphere
@@ -401,14 +428,15 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
     pb.set_weights(mesh, size, o.surface_weight);
     mesh.points = start_points;
     const solve::UntangleOptions uo = quality_options(o.quality_iterations * std::max(1, o.quality_rounds));
-    const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o, false);
+    const solve::UntangleResult r =
+        run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o, false, o.face_attraction);
     add(res.quality, r);
     if (inverted_corners(mesh) > 0) {  // never trade validity for the surface
       mesh.points = best_points;
       break;
     }
     const quality::ScaledJacobianSummary s = summary(mesh, true);
-    pb.snap(mesh, s.min);
+    if (o.face_attraction <= 0) pb.snap(mesh, s.min);
     const double h = hausdorff();
     if (!(h < best_hausdorff)) {
       core::logger().info("optimize: stiffer attraction on {} drifted vertices did not lower the Hausdorff distance "
@@ -422,6 +450,37 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
     best_hausdorff = h;
     best_points = mesh.points;
     ++res.drift_retries;
+  }
+  // Fit retry: still beyond the bound with the boundary vertices on the target, the distance is
+  // the chords of quads too long for the surface's curvature or straddling a sharp edge the hex
+  // mesh has no edge for (bunny, max-planck, fandisk). Run the rounds again from their start
+  // with the quad centres attracted too (face_attraction.h): the boundary then fits the surface
+  // instead of interpolating it. Kept only when it lowers the Hausdorff distance.
+  if (o.fit_retry > 0 && o.face_attraction <= 0 && start_inverted == 0 && inverted_corners(mesh) == 0) {
+    if (best_hausdorff <= 0) best_hausdorff = hausdorff();
+    if (best_hausdorff > o.hausdorff_bound) {
+      const quality::ScaledJacobianSummary kept = best;
+      const std::vector<Vec3> kept_points = mesh.points;
+      const int kept_inverted = best_inverted;
+      mesh.points = start_points;
+      best = summary(mesh, true);
+      best_inverted = inverted_corners(mesh);
+      best_points = mesh.points;
+      quality_rounds(o.fit_retry);
+      const double h = hausdorff();
+      if (best_inverted == 0 && h < best_hausdorff) {
+        core::logger().info("optimize: Hausdorff {:.3f} % above the bound; quad centres attracted too: {:.3f} %, "
+                            "mSJ {:.4f}", 100 * best_hausdorff, 100 * h, best.min);
+        best_hausdorff = h;
+        res.fit_retry = true;
+      } else {
+        core::logger().info("optimize: attracting the quad centres did not lower the Hausdorff distance ({:.3f} %); "
+                            "not kept", 100 * h);
+        mesh.points = kept_points;
+        best = kept;
+        best_inverted = kept_inverted;
+      }
+    }
   }
   res.quality.seconds = seconds_since(t2);
 

@@ -132,6 +132,8 @@ TEST(HexOptimize, Deterministic) {
             io::write_mesh_to_string(core::to_mesh_data(b), io::Format::Medit));
 }
 
+double sphere_diagonal(const core::TriMesh& t) { return core::bounding_box(t.points).extent().norm(); }
+
 //! Largest over smallest hex volume (of the box spanned by corners 0 and 6: about it for
 //! near-boxes).
 double volume_ratio(const core::HexMesh& m) {
@@ -171,6 +173,37 @@ TEST(HexOptimize, SizeUniformityEvensOutAGradedMesh) {
   EXPECT_TRUE(check.ok()) << check.reason();
 }
 
+TEST(HexOptimize, FaceAttractionFitsInsteadOfInterpolating) {
+  // a coarse ball: with every boundary vertex on the sphere each quad is a chord; attracting the
+  // quad centres too lets the boundary straddle the sphere, and the Hausdorff distance drops
+  const core::TriMesh sphere = test::sphere_surface(4);
+  const optimize::TargetSurface target(sphere, {});
+  core::HexMesh start = test::ball_grid(6);
+  for (const int v : core::boundary(start).vertex_map) start.points[v] = target.closest_point(start.points[v]);
+  // one quality round without reweighting (the ball's corner hexes would otherwise pull their
+  // vertices off the sphere, which is another test's subject)
+  optimize::OptimizeOptions o;
+  o.quality_rounds = 1;
+  o.drift_retries = 0;
+  core::HexMesh chords = start;
+  optimize::optimize_hex_mesh(chords, sphere, o);
+  core::HexMesh fitted = start;
+  o.face_attraction = 1.0;
+  const auto r = optimize::optimize_hex_mesh(fitted, sphere, o);
+  EXPECT_TRUE(r.untangled);
+  EXPECT_GT(r.after.min, 0.0);
+  const double d_chords = quality::hausdorff_distance(chords, sphere).relative;
+  const double d_fitted = quality::hausdorff_distance(fitted, sphere).relative;
+  EXPECT_LT(d_fitted, 0.75 * d_chords) << "chords " << d_chords << ", fitted " << d_fitted;
+  // vertices leave the sphere, outwards, by a fraction of the chord's sag
+  double outside = 0;
+  for (const int v : core::boundary(fitted).vertex_map) outside = std::max(outside, fitted.points[v].norm() - 1.0);
+  EXPECT_GT(outside, 0.0);
+  EXPECT_LT(outside, d_chords * sphere_diagonal(sphere));
+  const auto check = optimize::check_foldover(fitted);
+  EXPECT_TRUE(check.ok()) << check.reason();
+}
+
 TEST(HexOptimize, BadInput) {
   core::HexMesh empty;
   EXPECT_THROW(optimize::optimize_hex_mesh(empty, test::box_surface()), core::InputError);
@@ -184,6 +217,9 @@ TEST(HexOptimize, BadInput) {
   optimize::OptimizeOptions u;
   u.size_uniformity = 1.5;
   EXPECT_THROW(optimize::optimize_hex_mesh(g, test::box_surface(), u), core::InputError);
+  optimize::OptimizeOptions f;
+  f.face_attraction = -1;
+  EXPECT_THROW(optimize::optimize_hex_mesh(g, test::box_surface(), f), core::InputError);
 }
 
 // Done-when line of issue 8: the rockerarm optimized with its own boundary as target keeps
