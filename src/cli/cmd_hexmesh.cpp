@@ -97,7 +97,8 @@ void run_mesh(const MeshOptions& o, bool hex) {
                       {"seconds", seconds}};
   if (hex) j["inverted_model_hexes"] = r.inverted_model_hexes;
   if (!o.polycube_out.empty()) j["polycube_output"] = o.polycube_out;
-  std::string text = fmt::format("scale {:.6g}: lattice [{}, {}] x [{}, {}] x [{}, {}]\n", r.scale,
+  const char* scale_name = go.sizing == mesh::GridSizing::Map ? "cells per model length" : "scale";
+  std::string text = fmt::format("{} {:.6g}: lattice [{}, {}] x [{}, {}] x [{}, {}]\n", scale_name, r.scale,
                                  r.lattice_min[0], r.lattice_max[0], r.lattice_min[1],
                                  r.lattice_max[1], r.lattice_min[2], r.lattice_max[2]);
   if (hex)
