@@ -70,21 +70,34 @@ VertexRoles classify_vertices(const core::HexMesh& mesh, const TargetSurface& ta
     }
   }
   // Corners: each target corner goes to its nearest candidate vertex.
-  std::vector<std::tuple<int, double, int>> candidates;  // (target corner, distance, surface vertex)
+  // A vertex where two sharp edges meet takes a corner only when it is a junction of three or
+  // more feature lines (a T on fandisk, where the hex boundary follows two of them; not the end
+  // of a line, as noise creases on scanned models have), within half the distance, and no
+  // vertex where three sharp edges meet is near.
+  const auto& tf = target.features();
+  std::vector<int> corner_valence(tf.corners.size(), 0);
+  for (const auto& e : tf.edges)
+    for (int x : e) {
+      const auto it = std::lower_bound(tf.corners.begin(), tf.corners.end(), x);
+      if (it != tf.corners.end() && *it == x) ++corner_valence[static_cast<std::size_t>(it - tf.corners.begin())];
+    }
+  std::vector<std::tuple<int, int, double, int>> candidates;  // (target corner, valence < 3, distance, vertex)
   for (int s = 0; s < ns; ++s) {
     if (valence[s] == 0) continue;
     r.role[b.vertex_map[s]] = VertexRole::Feature;
-    if (valence[s] < 3) continue;
+    if (valence[s] < 2) continue;
     const core::Vec3& p = q.points[s];
     const int k = target.nearest_corner(p);
     if (k < 0) continue;
     const double d = (target.corner_position(k) - p).norm();
-    if (d <= distance * r.edge_length[b.vertex_map[s]]) candidates.emplace_back(k, d, s);
+    if (valence[s] < 3 && corner_valence[static_cast<std::size_t>(k)] < 3) continue;
+    const double reach = (valence[s] >= 3 ? distance : 0.5 * distance) * r.edge_length[b.vertex_map[s]];
+    if (d <= reach) candidates.emplace_back(k, valence[s] < 3 ? 1 : 0, d, s);
   }
   std::sort(candidates.begin(), candidates.end());
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     if (i > 0 && std::get<0>(candidates[i]) == std::get<0>(candidates[i - 1])) continue;
-    const int v = b.vertex_map[std::get<2>(candidates[i])];
+    const int v = b.vertex_map[std::get<3>(candidates[i])];
     r.role[v] = VertexRole::Corner;
     r.corner[v] = std::get<0>(candidates[i]);
   }

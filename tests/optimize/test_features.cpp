@@ -1,9 +1,15 @@
 // Sharp features of a target and the roles of hex vertices.
+#include "core/topology.h"
 #include "optimize/features.h"
 #include "optimize/vertex_roles.h"
 #include "optimize_fixtures.h"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <utility>
+#include <vector>
 
 namespace polycube {
 namespace {
@@ -57,6 +63,59 @@ TEST(VertexRoles, GridOfABox) {
     if (r.role[v] == optimize::VertexRole::Corner) {
       EXPECT_LT((t.corner_position(r.corner[v]) - p).norm(), 1e-12);
     }
+  }
+}
+
+TEST(VertexRoles, TwoSharpEdgesTakeAJunctionOfThreeLines) {
+  // the target: the unit cube (triangulated boundary of a 4^3 grid) whose features get one more
+  // line, on the top face from (0.5, 0, 1) inwards, so (0.5, 0, 1) is a T junction of three
+  // lines. The hex grid follows two of them there (the cube's top front edge): that vertex
+  // takes the corner, as three sharp edges take the cube's corners.
+  const int n = 4;
+  const core::HexMesh m = test::box_grid(n, n, n);
+  const core::HexBoundary b = core::boundary(m);
+  core::TriMesh cube;
+  cube.points = b.surface.points;
+  for (const auto& q : b.surface.cells) {
+    cube.cells.push_back({q[0], q[1], q[2]});
+    cube.cells.push_back({q[0], q[2], q[3]});
+  }
+  auto at = [&](const core::Vec3& x) {
+    for (int v = 0; v < cube.num_points(); ++v)
+      if ((cube.points[v] - x).norm() < 1e-12) return v;
+    return -1;
+  };
+  optimize::SurfaceFeatures f = optimize::detect_features(cube, 40.0);
+  ASSERT_EQ(f.corners.size(), 8u);
+  const int t0 = at({0.5, 0, 1}), t1 = at({0.5, 0.25, 1}), t2 = at({0.5, 0.5, 1});
+  ASSERT_TRUE(t0 >= 0 && t1 >= 0 && t2 >= 0);
+  std::vector<std::pair<std::array<int, 2>, int>> edges;
+  for (std::size_t e = 0; e < f.edges.size(); ++e) edges.push_back({f.edges[e], f.edge_line[e]});
+  edges.push_back({{std::min(t0, t1), std::max(t0, t1)}, f.num_lines});
+  edges.push_back({{std::min(t1, t2), std::max(t1, t2)}, f.num_lines});
+  ++f.num_lines;
+  std::sort(edges.begin(), edges.end());
+  f.edges.clear();
+  f.edge_line.clear();
+  std::map<int, int> valence;
+  for (const auto& [e, line] : edges) {
+    f.edges.push_back(e);
+    f.edge_line.push_back(line);
+    ++valence[e[0]];
+    ++valence[e[1]];
+  }
+  f.corners.clear();
+  for (const auto& [v, k] : valence)
+    if (k != 2) f.corners.push_back(v);  // the 8 cube corners, the T and the line's end
+  ASSERT_EQ(f.corners.size(), 10u);
+  const optimize::TargetSurface t(cube, std::move(f));
+  const auto r = optimize::classify_vertices(m, t, 40.0, 0.5);
+  EXPECT_EQ(r.corners, 9);  // the cube's 8 and the T; the line's inner end has no sharp hex edge
+  for (int v = 0; v < m.num_points(); ++v) {
+    if ((m.points[v] - core::Vec3(0.5, 0, 1)).norm() > 1e-12) continue;
+    EXPECT_EQ(r.role[v], optimize::VertexRole::Corner);
+    ASSERT_GE(r.corner[v], 0);
+    EXPECT_LT((t.corner_position(r.corner[v]) - m.points[v]).norm(), 1e-12);
   }
 }
 
