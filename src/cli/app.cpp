@@ -3,12 +3,14 @@
 #include "core/errors.h"
 #include "core/log.h"
 #include "core/progress.h"
+#include "mesh/grid.h"
 
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <unistd.h>
 
 #include <cstdio>
 #include <iostream>
+#include <map>
 
 namespace polycube::cli {
 
@@ -43,6 +45,14 @@ class TerminalProgress : public core::ProgressClient {
 GlobalOptions& global_options() {
   static GlobalOptions g;
   return g;
+}
+
+CLI::Option* add_sizing_option(CLI::App& sub, mesh::GridSizing& sizing, const std::string& help) {
+  return sub.add_option("--sizing", sizing, help)
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, mesh::GridSizing>{{"uniform", mesh::GridSizing::Uniform}, {"map", mesh::GridSizing::Map}},
+          CLI::ignore_case))
+      ->capture_default_str();
 }
 
 void add_global_flags(CLI::App& app) {

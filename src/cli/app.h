@@ -10,6 +10,10 @@
 #include <functional>
 #include <string>
 
+namespace polycube::mesh {
+enum class GridSizing;
+}
+
 namespace polycube::cli {
 
 enum ExitCode : int { kOk = 0, kUsage = 1, kBadInput = 2, kNoResult = 3, kInternal = 4 };
@@ -32,6 +36,9 @@ void setup_logging_and_progress();
 
 //! Print a summary: `json` as JSON on stdout when --json was given, else `text` (unless empty).
 void print_result(const nlohmann::json& json, const std::string& text);
+
+//! Add `--sizing uniform|map` (mesh/grid.h) to a subcommand.
+CLI::Option* add_sizing_option(CLI::App& sub, mesh::GridSizing& sizing, const std::string& help);
 
 //! Run the parsed application, mapping exceptions to exit codes and one-line messages.
 int run_guarded(const std::function<void()>& body);

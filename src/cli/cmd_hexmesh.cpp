@@ -10,7 +10,6 @@
 #include <fmt/format.h>
 
 #include <chrono>
-#include <map>
 #include <memory>
 #include <string>
 
@@ -149,14 +148,10 @@ CLI::App* add_common(CLI::App& app, const char* name, const char* help,
                       ->check(CLI::PositiveNumber);
     quads->excludes(scale)->excludes(hexes);
   }
-  sub->add_option("--sizing", opts->grid.sizing,
+  add_sizing_option(*sub, opts->grid.sizing,
                   "Cells per interval between chart planes: 'uniform' (one scale, cubes in polycube space) or "
                   "'map' (follows the map's stretch: closer to one hex size in model space; --scale is then cells "
-                  "per model length)")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, mesh::GridSizing>{{"uniform", mesh::GridSizing::Uniform}, {"map", mesh::GridSizing::Map}},
-          CLI::ignore_case))
-      ->capture_default_str();
+                  "per model length)");
   sub->add_flag(
       "--allow-defects", opts->allow_defects,
       "Write the mesh even when naive snapping breaks the polycube (merged corners, ...)");

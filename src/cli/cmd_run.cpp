@@ -11,7 +11,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <map>
 #include <memory>
 
 namespace polycube::cli {
@@ -127,13 +126,9 @@ void register_run(CLI::App& app) {
   sub->add_option("--hexes", opts->run.target_hexes, "About this many hexes in the hex mesh")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  sub->add_option("--sizing", opts->run.grid_sizing,
+  add_sizing_option(*sub, opts->run.grid_sizing,
                   "Gridding: cells per interval between chart planes, 'uniform' (one scale) or 'map' (follows the "
-                  "map's stretch, for hexes of more even size in model space)")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, mesh::GridSizing>{{"uniform", mesh::GridSizing::Uniform}, {"map", mesh::GridSizing::Map}},
-          CLI::ignore_case))
-      ->capture_default_str();
+                  "map's stretch, for hexes of more even size in model space)");
   sub->add_flag("--no-simplify", opts->no_simplify, "Mesh the constructed map without corner alignment");
   sub->add_flag("--no-optimize", opts->no_optimize, "Keep the gridded hex mesh as it is");
   auto& c = opts->run.construct;

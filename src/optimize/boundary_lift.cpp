@@ -60,25 +60,13 @@ BoundaryLift lift_boundary(const core::HexMesh& mesh, const TargetSurface& targe
 }
 
 solve::LinearReduction with_apexes(const solve::LinearReduction& r, const BoundaryLift& lift) {
-  const auto rows = static_cast<Eigen::Index>(r.B.rows());
-  const auto extra = static_cast<Eigen::Index>(3 * lift.base.size());
-  std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(static_cast<std::size_t>(r.B.nonZeros()) * 2);
-  for (Eigen::Index i = 0; i < rows; ++i)
-    for (decltype(r.B)::InnerIterator it(r.B, i); it; ++it) trip.emplace_back(i, it.col(), it.value());
-  solve::LinearReduction out;
-  out.x0.resize(rows + extra);
-  out.x0.head(rows) = r.x0;
-  for (std::size_t k = 0; k < lift.base.size(); ++k)
-    for (int d = 0; d < 3; ++d) {
-      const Eigen::Index src = 3 * static_cast<Eigen::Index>(lift.base[k]) + d;
-      const Eigen::Index dst = rows + 3 * static_cast<Eigen::Index>(k) + d;
-      for (decltype(r.B)::InnerIterator it(r.B, src); it; ++it) trip.emplace_back(dst, it.col(), it.value());
-      out.x0[dst] = r.x0[src] + lift.offset[k][d];
-    }
-  out.B.resize(rows + extra, r.B.cols());
-  out.B.setFromTriplets(trip.begin(), trip.end());
-  return out;
+  std::vector<solve::DerivedPoint> apexes(lift.base.size());
+  for (std::size_t k = 0; k < lift.base.size(); ++k) {
+    apexes[k].vertex[0] = lift.base[k];
+    apexes[k].weight[0] = 1.0;
+    apexes[k].offset = lift.offset[k];
+  }
+  return solve::with_derived_points(r, apexes);
 }
 
 void append(solve::TetElements& to, const solve::TetElements& from) {

@@ -15,27 +15,12 @@ std::vector<std::array<int, 4>> boundary_quads(const core::HexMesh& mesh) {
 }
 
 solve::LinearReduction with_quad_centres(const solve::LinearReduction& r, const std::vector<std::array<int, 4>>& quads) {
-  const auto rows = static_cast<Eigen::Index>(r.B.rows());
-  const auto extra = static_cast<Eigen::Index>(3 * quads.size());
-  std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(static_cast<std::size_t>(r.B.nonZeros()) + 12 * quads.size());
-  for (Eigen::Index i = 0; i < rows; ++i)
-    for (decltype(r.B)::InnerIterator it(r.B, i); it; ++it) trip.emplace_back(i, it.col(), it.value());
-  solve::LinearReduction out;
-  out.x0 = Eigen::VectorXd::Zero(rows + extra);
-  out.x0.head(rows) = r.x0;
-  for (std::size_t k = 0; k < quads.size(); ++k)
-    for (int d = 0; d < 3; ++d) {
-      const Eigen::Index dst = rows + 3 * static_cast<Eigen::Index>(k) + d;
-      for (int v : quads[k]) {
-        const Eigen::Index src = 3 * static_cast<Eigen::Index>(v) + d;
-        for (decltype(r.B)::InnerIterator it(r.B, src); it; ++it) trip.emplace_back(dst, it.col(), 0.25 * it.value());
-        out.x0[dst] += 0.25 * r.x0[src];
-      }
-    }
-  out.B.resize(rows + extra, r.B.cols());
-  out.B.setFromTriplets(trip.begin(), trip.end());  // duplicates (a shared variable) are summed
-  return out;
+  std::vector<solve::DerivedPoint> centres(quads.size());
+  for (std::size_t k = 0; k < quads.size(); ++k) {
+    centres[k].vertex = quads[k];
+    centres[k].weight = {0.25, 0.25, 0.25, 0.25};
+  }
+  return solve::with_derived_points(r, centres);
 }
 
 }  // namespace polycube::optimize

@@ -371,6 +371,33 @@ LinearReduction identity_reduction(int num_points) {
   return index_reduction(var, 3 * num_points, Eigen::VectorXd::Zero(3 * num_points));
 }
 
+LinearReduction with_derived_points(const LinearReduction& r, const std::vector<DerivedPoint>& points) {
+  const auto rows = static_cast<Eigen::Index>(r.B.rows());
+  const auto extra = static_cast<Eigen::Index>(3 * points.size());
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(static_cast<std::size_t>(r.B.nonZeros()) + 12 * points.size());
+  for (Eigen::Index i = 0; i < rows; ++i)
+    for (decltype(r.B)::InnerIterator it(r.B, i); it; ++it) trip.emplace_back(i, it.col(), it.value());
+  LinearReduction out;
+  out.x0 = Eigen::VectorXd::Zero(rows + extra);
+  out.x0.head(rows) = r.x0;
+  for (std::size_t k = 0; k < points.size(); ++k)
+    for (int d = 0; d < 3; ++d) {
+      const Eigen::Index dst = rows + 3 * static_cast<Eigen::Index>(k) + d;
+      out.x0[dst] = points[k].offset[d];
+      for (int i = 0; i < 4; ++i) {
+        if (points[k].vertex[i] < 0) continue;
+        const double w = points[k].weight[i];
+        const Eigen::Index src = 3 * static_cast<Eigen::Index>(points[k].vertex[i]) + d;
+        for (decltype(r.B)::InnerIterator it(r.B, src); it; ++it) trip.emplace_back(dst, it.col(), w * it.value());
+        out.x0[dst] += w * r.x0[src];
+      }
+    }
+  out.B.resize(rows + extra, r.B.cols());
+  out.B.setFromTriplets(trip.begin(), trip.end());  // a variable shared by two vertices: summed
+  return out;
+}
+
 Eigen::VectorXd flatten(const std::vector<core::Vec3>& points) {
   Eigen::VectorXd x(3 * static_cast<Eigen::Index>(points.size()));
   for (std::size_t v = 0; v < points.size(); ++v) x.segment<3>(3 * static_cast<Eigen::Index>(v)) = points[v];

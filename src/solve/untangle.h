@@ -76,6 +76,18 @@ LinearReduction index_reduction(const std::vector<int>& var, int num_variables,
 //! Identity reduction (every coordinate free), with y = the flattened points.
 LinearReduction identity_reduction(int num_points);
 
+//! A point that follows the reduction's points: sum of weight[i] * point(vertex[i]) (entries
+//! with vertex -1 unused) plus a constant offset.
+struct DerivedPoint {
+  std::array<int, 4> vertex{-1, -1, -1, -1};
+  std::array<double, 4> weight{};
+  core::Vec3 offset = core::Vec3::Zero();
+};
+
+//! The reduction extended by derived points: point k is reduction point num_points + k, its
+//! coordinates exactly the combination of its vertices' rows (fixed ones included).
+LinearReduction with_derived_points(const LinearReduction& reduction, const std::vector<DerivedPoint>& points);
+
 //! Flatten points into a 3#V vector / unflatten.
 Eigen::VectorXd flatten(const std::vector<core::Vec3>& points);
 std::vector<core::Vec3> unflatten(const Eigen::VectorXd& x);
