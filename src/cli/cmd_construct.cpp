@@ -1,6 +1,10 @@
 //! `polycube construct INPUT -o DIR`: tetrahedralize (or take the input tet mesh), label and
 //! repair, deform, untangle and certify; write the certified map (model.mesh, polycube.mesh),
-//! labeling.txt and report.json (ARCHITECTURE §6.2).
+//! labeling.txt and report.json (ARCHITECTURE §6.2). Exit code 2 when the input is at fault, 3
+//! when no certified map is reached (the reason; with --keep-failed the best attempt, when one got
+//! as far as the deformation, as uncertified_*.mesh). The hidden `--inject-failure certify` treats
+//! the certified result as not certified, for the tests of --keep-failed (no small input makes the
+//! certification fail reliably).
 #include "cli/app.h"
 #include "construct/construct.h"
 #include "core/errors.h"
@@ -22,6 +26,7 @@ struct ConstructCliOptions {
   std::string input;
   std::string output_dir;
   std::string keep_failed;  // folder for the best uncertified attempt, for diagnosis
+  std::string inject_failure;  // testing only: "certify" = report the result as not certified
   construct::ConstructOptions construct;
 };
 
@@ -52,6 +57,9 @@ void run_construct(const ConstructCliOptions& o) {
   construct::ConstructResult r;
   try {
     r = run_from_file(o);  // throws unless certified
+    if (o.inject_failure == "certify")
+      throw construct::NotCertified("polycube map not certified: injected failure (--inject-failure certify)", r.map,
+                                    r.boundary, r.labels);
   } catch (const construct::NotCertified& e) {
     if (!o.keep_failed.empty()) write_failed_attempt(o.keep_failed, e);
     throw;
@@ -235,6 +243,10 @@ void register_construct(CLI::App& app) {
                   "times per compactness")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  // Fault injection for the tests of --keep-failed: hidden from --help.
+  sub->add_option("--inject-failure", opts->inject_failure, "Testing only: treat the result as not certified")
+      ->check(CLI::IsMember({"certify"}))
+      ->group("");
   sub->callback([opts] { run_construct(*opts); });
 }
 

@@ -1,7 +1,14 @@
 //! `polycube run INPUT -o DIR`: the whole chain (construct -> simplify -> hexmesh -> optimize,
 //! plus the quad surface mesh), every intermediate result in DIR, report.json and a summary
-//! table. A failing stage stops the chain with exit code 3 (2 for bad input), names the stage
-//! and keeps what the earlier stages wrote.
+//! table. A failing stage stops the chain, names the stage (stderr and report.json's
+//! `failure.stage`) and keeps what the earlier stages wrote; nothing of the failing or later
+//! stages is written (except hex_quality.vtk when the quality stage fails on inverted hexes: it
+//! shows them). Exit code 2 when the input file is at fault (stages input and construct:
+//! unreadable, open, non-manifold, self-intersecting, ...), else 3: the stage could not reach a
+//! valid result, with the reason -- also when the request cannot be met for this polycube (a
+//! `--hexes` whose lattice is too large is only known after the construction; the file is fine).
+//! The hidden `--inject-failure STAGE` makes that stage fail at its start, for the tests of the
+//! failure handling of the stages no small input makes fail reliably (pipeline.h).
 #include "cli/app.h"
 #include "core/errors.h"
 #include "io/mesh_io.h"
@@ -116,14 +123,18 @@ void register_run(CLI::App& app) {
   auto opts = std::make_shared<RunCliOptions>();
   CLI::App* sub = app.add_subcommand(
       "run", "The whole chain on a surface or tet mesh: construct -> simplify -> hexmesh (+ quad mesh) -> optimize, "
-             "with every intermediate result, report.json and a summary table");
+             "with every intermediate result, report.json and a summary table. A failing stage stops the chain: "
+             "exit code 2 when the input file is at fault, 3 when the stage could not reach a valid result (the "
+             "reason and the stage on stderr and in report.json; earlier results kept)");
   sub->add_option("input", opts->input, "Closed surface (.obj .off .stl .ply .mesh) or tet mesh (.mesh .vtk .msh)")
       ->required();
   sub->add_option("-o,--output", opts->output_dir,
                   "Output folder: construct/ and simplify/ maps, hex.mesh, hex_optimized.mesh, hex_quality.vtk, "
                   "quad.vtk, report.json")
       ->required();
-  sub->add_option("--hexes", opts->run.target_hexes, "About this many hexes in the hex mesh")
+  sub->add_option("--hexes", opts->run.target_hexes,
+                  "About this many hexes in the hex mesh (when the polycube's lattice at that size would be too "
+                  "large, the hexmesh stage fails: exit code 3)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   add_sizing_option(*sub, opts->run.grid_sizing,
@@ -149,6 +160,10 @@ void register_run(CLI::App& app) {
                   "Simplification: stop before an iteration whose lambda is below this (0: until convergence)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  // Fault injection for the tests (pipeline.h, RunOptions::inject_failure): hidden from --help.
+  sub->add_option("--inject-failure", opts->run.inject_failure, "Testing only: make this stage fail at its start")
+      ->check(CLI::IsMember({"input", "construct", "simplify", "hexmesh", "optimize", "quality"}))
+      ->group("");
   sub->callback([opts] { run_run(*opts); });
 }
 

@@ -58,17 +58,16 @@ struct OptimizeOptions {
   //! target exceeds hausdorff_bound (relative to the target's bounding-box diagonal; the thesis's
   //! 0.9 %, §4.5), the boundary vertices farther from the target than drift_diagonal (same units)
   //! get a 16 times stiffer attraction and the quality optimization runs again from before the
-  //! rounds (at most drift_retries times; a retry is kept only when it lowers the Hausdorff
-  //! distance): there the surface is a constraint, not something to trade for the minimum
-  //! scaled Jacobian. Only for meshes valid on input. It fixes cube_minus_sphere (one vertex at
-  //! a concave polycube corner on the sphere cavity, a third of an edge off: Hausdorff 0.99 % ->
-  //! 0.21 %). Meshes within the bound never retry: a retry costs mSJ (box-cylinder at 50k
-  //! hexes: 0.468 -> 0.386 for a Hausdorff of 0.60 %, already within the bound). The vertex
-  //! threshold is half the bound: chords add to a vertex's drift (a ball: vertices 0.57 % off,
-  //! Hausdorff 0.98 %).
+  //! rounds (at most drift_retries times, stopping once within the bound; a retry is kept only
+  //! when it lowers the Hausdorff distance): there the surface is a constraint, not something to
+  //! trade for the minimum scaled Jacobian. Only for meshes valid on input. The heavier weights
+  //! of the worst hexes can pull their boundary vertices off the target where the snap cannot
+  //! put them back; one stiffening is not always enough on a coarse curved boundary, whose
+  //! drifted set shrinks from one retry to the next. Meshes within the bound never retry, since a
+  //! retry costs mSJ. The vertex threshold is half the bound: chords add to a vertex's drift.
   double hausdorff_bound = 0.009;
   double drift_diagonal = 0.0045;
-  int drift_retries = 1;
+  int drift_retries = 3;
   //! How far the reference size of each hex moves from its input size towards one size for the
   //! whole mesh (0: keep the input's grading, 1: ask every hex for the same volume). Each
   //! corner's three reference edge lengths are scaled by (L / h)^size_uniformity, h the hex's

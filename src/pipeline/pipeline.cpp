@@ -19,7 +19,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <optional>
+#include <string>
 
 #include <sys/resource.h>
 
@@ -28,6 +30,9 @@ namespace polycube::pipeline {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+//! Every stage's name, in order (simplify and optimize can be turned off).
+constexpr const char* kStages[] = {"input", "construct", "simplify", "hexmesh", "optimize", "quality"};
 
 //! Signed volume of the map's polycube (lattice units cubed when it is integer).
 double polycube_volume(const core::PolycubeMap& map) {
@@ -61,10 +66,12 @@ class Runner {
     StageRecord rec{name, 0.0, false};
     const auto t = Clock::now();
     try {
+      if (o_.inject_failure == name) throw core::GeometryError("injected failure (--inject-failure " + name + ")");
       body();
       rec.ok = true;
     } catch (const core::InputError& e) {
-      fail(name, e.what(), true);
+      // Only the stages that read and process the input file can blame it (see RunResult).
+      fail(name, e.what(), name == "input" || name == "construct");
     } catch (const core::Error& e) {
       fail(name, e.what(), false);
     } catch (const std::bad_alloc&) {
@@ -101,6 +108,9 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   const auto t_start = Clock::now();
   RunResult r;
   if (o.target_hexes <= 0) throw core::InputError("the target number of hexes must be positive");
+  if (!o.inject_failure.empty() &&
+      std::find(std::begin(kStages), std::end(kStages), o.inject_failure) == std::end(kStages))
+    throw core::InputError("inject_failure: no stage named " + o.inject_failure);
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) throw core::InputError(fmt::format("cannot create the output folder {}: {}", out_dir.string(), ec.message()));

@@ -39,6 +39,11 @@ struct RunOptions {
   optimize::OptimizeOptions optimize_options;
   //! Called when a stage starts: (1-based index, number of stages, name).
   std::function<void(int, int, const std::string&)> on_stage;
+  //! Fault injection, for tests of the failure handling only (the hidden `--inject-failure`
+  //! option of `polycube run`): the stage of this name fails as soon as it starts, with a
+  //! core::GeometryError "injected failure", exactly as a stage that could not reach a result.
+  //! Empty (the default): never.
+  std::string inject_failure;
 };
 
 //! One stage's record.
@@ -54,7 +59,11 @@ struct RunResult {
   std::vector<StageRecord> stages;
   std::string failed_stage;  //!< empty when every stage succeeded
   std::string failure;       //!< the reason, one line
-  bool bad_input = false;    //!< the failure is the input's fault (exit code 2)
+  //! The failure is the input file's fault (exit code 2): an InputError of the stages that read
+  //! and process the file ("input", "construct"). A later stage's InputError (the chain's own
+  //! intermediate result, or a request such as a target hex count whose lattice is too large for
+  //! this polycube) is a stage that could not reach a result (exit code 3).
+  bool bad_input = false;
   std::vector<std::string> files;  //!< files written, in order
 
   // construct
@@ -83,7 +92,8 @@ struct RunResult {
 
 //! Run the chain on a surface or tet-mesh file, writing into out_dir (created).
 //! Never throws for a stage failure (see RunResult); throws core::InputError only when out_dir
-//! cannot be created.
+//! cannot be created or the options are invalid (target_hexes <= 0, inject_failure not a stage
+//! name).
 RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem::path& out_dir,
                        const RunOptions& options);
 

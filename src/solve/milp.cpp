@@ -18,6 +18,33 @@ double coin_bound(double v, double inf) {
   return v;
 }
 
+//! Node limit of the search for a feasible point in infeasible_or_unbounded().
+constexpr int kFeasibilityNodes = 1000;
+
+//! CBC 2.10 reports a MILP whose LP relaxation is unbounded as proven infeasible. Such a MILP is
+//! unbounded when it has a feasible point at all (rational data, Meyer 1974), so: Infeasible when
+//! the relaxation is bounded (or infeasible), else Unbounded when a short branch and bound with a
+//! zero objective finds a point, Infeasible when it proves there is none, Failed when undecided.
+MilpStatus infeasible_or_unbounded(const OsiClpSolverInterface& original, const MilpOptions& options) {
+  OsiClpSolverInterface relaxation(original);
+  relaxation.messageHandler()->setLogLevel(0);
+  relaxation.getModelPtr()->messageHandler()->setLogLevel(0);
+  relaxation.initialSolve();
+  if (!relaxation.isProvenDualInfeasible()) return MilpStatus::Infeasible;
+  OsiClpSolverInterface feasibility(original);
+  const std::vector<double> zero(static_cast<std::size_t>(original.getNumCols()), 0.0);
+  feasibility.setObjective(zero.data());
+  CbcModel model(feasibility);
+  model.setLogLevel(0);
+  model.messageHandler()->setLogLevel(0);
+  model.setMaximumNodes(kFeasibilityNodes);
+  if (options.time_limit > 0) model.setMaximumSeconds(options.time_limit);
+  model.branchAndBound();
+  if (model.bestSolution()) return MilpStatus::Unbounded;
+  if (model.isProvenInfeasible()) return MilpStatus::Infeasible;
+  return MilpStatus::Failed;
+}
+
 }  // namespace
 
 int LinearProgram::add_variable(double cost_coefficient, double lower_bound, double upper_bound, bool is_integer) {
@@ -117,13 +144,14 @@ MilpResult solve_program(const LinearProgram& p, const MilpOptions& options) {
   if (model.isProvenOptimal()) {
     res.status = MilpStatus::Optimal;
   } else if (model.isProvenInfeasible()) {
-    res.status = MilpStatus::Infeasible;
+    res.status = infeasible_or_unbounded(si, options);
     return res;
   } else if (model.isProvenDualInfeasible()) {
     res.status = MilpStatus::Unbounded;
     return res;
   } else {
-    res.status = model.bestSolution() ? MilpStatus::Stopped : MilpStatus::Failed;
+    // Stopped on the time limit (with or without an incumbent), or abandoned.
+    res.status = model.bestSolution() || model.status() == 1 ? MilpStatus::Stopped : MilpStatus::Failed;
   }
   if (const double* x = model.bestSolution()) {
     res.x.assign(x, x + n);

@@ -1,9 +1,15 @@
-// End-to-end tests of `polycube run`: every stage's output re-readable and consistent with the
-// report, exit codes, refusal of bad input before any heavy work, determinism.
+// End-to-end tests of `polycube run`: every output read back with the project's readers and
+// checked against report.json and against what the shape must give; exit codes and what is kept
+// when each stage fails; refusal of bad input before any heavy work; determinism.
+#include "core/polycube_map.h"
+#include "core/topology.h"
 #include "core/types.h"
 #include "io/mesh_io.h"
+#include "io/polycube_map_io.h"
 #include "quality/domains.h"
 #include "quality/scaled_jacobian.h"
+#include "structure/structure.h"
+#include "structure/validate.h"
 
 #include "cli/run_cli.h"
 #include "construct/shapes.h"
@@ -13,11 +19,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace polycube {
 namespace {
@@ -43,11 +53,99 @@ fs::path temp_dir(const std::string& name) {
 
 CliResult run(const std::string& args) { return test::run_cli("run " + args); }
 
+//! `polycube run IN -o OUT <more>` with quoted paths.
+CliResult run(const fs::path& in, const fs::path& out, const std::string& more) {
+  std::string args = "\"";  // appended, not "..." + std::string&& (a false -Wrestrict of GCC 12)
+  args += in.string();
+  args += "\" -o \"";
+  args += out.string();
+  args += "\" ";
+  args += more;
+  return run(args);
+}
+
 void write_surface(const fs::path& p, const core::TriMesh& m) {
   core::MeshData d;
   d.points = m.points;
   d.triangles = m.cells;
   io::write_mesh(p, d);
+}
+
+nlohmann::json read_report(const fs::path& out) { return nlohmann::json::parse(slurp(out / "report.json")); }
+
+//! The cell field `name` of a mesh read from a file (empty when absent).
+std::vector<double> cell_field(const core::MeshData& d, const std::string& name) {
+  for (const auto& f : d.cell_data)
+    if (f.name == name) return f.values;
+  return {};
+}
+
+// What each stage writes, from pipeline.h's list of the output folder.
+struct StageFiles {
+  std::string stage;
+  std::vector<std::string> files;
+};
+const std::vector<StageFiles> kStageFiles = {
+    {"construct", {"construct/model.mesh", "construct/polycube.mesh"}},
+    {"simplify", {"simplify/model.mesh", "simplify/polycube.mesh"}},
+    {"hexmesh", {"hex.mesh", "quad.vtk"}},
+    {"optimize", {"hex_optimized.mesh"}},
+    {"quality", {"hex_quality.vtk"}},
+};
+
+//! A run stopped at `stage` with exit code `code`: the stage named on stderr and in report.json,
+//! the stages before it recorded as successful and none after it, every file of the stages that
+//! ran before it (`ran`, in order, "input" first) present and listed, no file of the failing or
+//! later stages.
+void expect_stopped_at(const CliResult& r, const fs::path& out, const std::string& stage, int code,
+                       const std::vector<std::string>& ran) {
+  EXPECT_EQ(r.exit_code, code) << r.err;
+  EXPECT_NE(r.err.find("polycube: error: stage " + stage + " failed: "), std::string::npos) << r.err;
+  ASSERT_TRUE(fs::exists(out / "report.json"));
+  const auto j = read_report(out);
+  EXPECT_FALSE(j["ok"].get<bool>());
+  EXPECT_EQ(j["failure"]["stage"], stage);
+  const std::string reason = j["failure"]["reason"].get<std::string>();
+  EXPECT_FALSE(reason.empty());
+  EXPECT_NE(r.err.find(reason), std::string::npos) << "the reason of report.json is not on stderr: " << r.err;
+  // stages: those before, all ok, then the failing one, and nothing after it
+  const auto& stages = j["stages"];
+  ASSERT_EQ(stages.size(), ran.size() + 1) << stages.dump();
+  for (std::size_t i = 0; i < ran.size(); ++i) {
+    EXPECT_EQ(stages[i]["stage"], ran[i]);
+    EXPECT_TRUE(stages[i]["ok"].get<bool>()) << ran[i];
+  }
+  EXPECT_EQ(stages.back()["stage"], stage);
+  EXPECT_FALSE(stages.back()["ok"].get<bool>());
+  // files: the earlier stages' present and listed (and nothing else listed), the rest absent
+  std::set<std::string> listed;
+  for (const auto& f : j["files"]) listed.insert(fs::path(f.get<std::string>()).lexically_normal().string());
+  std::set<std::string> kept;
+  for (const auto& sf : kStageFiles) {
+    const bool before = std::find(ran.begin(), ran.end(), sf.stage) != ran.end();
+    for (const auto& f : sf.files) {
+      if (before) {
+        EXPECT_TRUE(fs::exists(out / f)) << f << " of stage " << sf.stage << " is not kept";
+        kept.insert((out / f).lexically_normal().string());
+      } else {
+        EXPECT_FALSE(fs::exists(out / f)) << f << " written although stage " << sf.stage << " did not succeed";
+      }
+    }
+  }
+  EXPECT_EQ(listed, kept) << j["files"].dump();
+}
+
+//! The map under `dir` read back: a valid polycube map (exact orientation in both spaces,
+//! axis-aligned closed boundary) with the report's counts.
+core::PolycubeMap expect_valid_map(const fs::path& dir, const nlohmann::json& j) {
+  const core::PolycubeMap map = io::read_polycube_map(dir / "model.mesh", dir / "polycube.mesh");
+  const structure::MapDiagnosis d = structure::diagnose_map(map);
+  EXPECT_TRUE(d.valid()) << dir << ": " << (d.failures.empty() ? "" : d.failures.front());
+  EXPECT_EQ(map.num_tets(), j["tets"].get<int>()) << dir;
+  const structure::PolycubeStructure s = structure::extract_structure(map);
+  EXPECT_EQ(static_cast<int>(s.charts.size()), j["charts"].get<int>()) << dir;
+  EXPECT_EQ(static_cast<int>(s.corners.size()), j["corners"].get<int>()) << dir;
+  return map;
 }
 
 class RunBox : public ::testing::Test {
@@ -69,33 +167,139 @@ TEST_F(RunBox, EveryStageSucceedsAndTheSummaryNamesThem) {
     EXPECT_NE(result_.out.find(std::string("| ") + stage + " |"), std::string::npos) << result_.out;
 }
 
-TEST_F(RunBox, OutputsAreReReadableAndMatchTheReport) {
+TEST_F(RunBox, ReportRecordsEveryStageAndListsExactlyTheFilesWritten) {
   ASSERT_EQ(result_.exit_code, 0) << result_.err;
   const fs::path out = dir_ / "out";
-  const auto j = nlohmann::json::parse(slurp(out / "report.json"));
+  const auto j = read_report(out);
   EXPECT_TRUE(j["ok"].get<bool>());
+  EXPECT_FALSE(j.contains("failure"));
+  const std::vector<std::string> order{"input", "construct", "simplify", "hexmesh", "optimize", "quality"};
+  ASSERT_EQ(j["stages"].size(), order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    EXPECT_EQ(j["stages"][i]["stage"], order[i]);
+    EXPECT_TRUE(j["stages"][i]["ok"].get<bool>());
+    EXPECT_GE(j["stages"][i]["seconds"].get<double>(), 0.0);
+  }
+  std::set<std::string> listed, expected;
+  for (const auto& f : j["files"]) listed.insert(fs::path(f.get<std::string>()).lexically_normal().string());
+  for (const auto& sf : kStageFiles)
+    for (const auto& f : sf.files) {
+      EXPECT_TRUE(fs::exists(out / f)) << f;
+      expected.insert((out / f).lexically_normal().string());
+    }
+  EXPECT_EQ(listed, expected) << j["files"].dump();
+}
+
+TEST_F(RunBox, BothMapsReadBackValidWithIdenticalTetBlocksAndTheReportsCounts) {
+  ASSERT_EQ(result_.exit_code, 0) << result_.err;
+  const fs::path out = dir_ / "out";
+  const auto j = read_report(out);
+  // A box: 6 charts meeting at 8 corners, whatever the tet mesh.
   EXPECT_EQ(j["charts"], 6);
   EXPECT_EQ(j["corners"], 8);
-  for (const char* f : {"construct/model.mesh", "construct/polycube.mesh", "simplify/model.mesh",
-                        "simplify/polycube.mesh", "hex.mesh", "hex_optimized.mesh", "hex_quality.vtk", "quad.vtk"})
-    EXPECT_TRUE(fs::exists(out / f)) << f;
+  const core::PolycubeMap built = expect_valid_map(out / "construct", j);
+  const core::PolycubeMap simplified = expect_valid_map(out / "simplify", j);
+  // The simplification moves polycube positions only: same tets, same model positions.
+  EXPECT_EQ(simplified.tets, built.tets);
+  EXPECT_EQ(simplified.model, built.model);
+  // ... and puts every corner on the integer lattice.
+  for (const auto& c : structure::extract_structure(simplified).corners)
+    for (int a = 0; a < 3; ++a) EXPECT_EQ(c.position[a], std::round(c.position[a])) << "corner at vertex " << c.vertex;
+  // The model is the input box [0,1]x[0,2]x[0,1.5]: its bounding box, in both maps.
+  const core::Vec3 lo = core::bounding_box(built.model).min, hi = core::bounding_box(built.model).max;
+  EXPECT_NEAR((lo - core::Vec3(0, 0, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((hi - core::Vec3(1, 2, 1.5)).norm(), 0.0, 1e-12);
+  // A box is one block before and after simplification.
+  EXPECT_EQ(j["hex_domains_before"], 1);
+  EXPECT_EQ(j["hex_domains_after"], 1);
+  EXPECT_EQ(j["quad_domains_after"], 6);
+}
+
+TEST_F(RunBox, HexMeshesReadBackWithTheReportsCountsAndQuality) {
+  ASSERT_EQ(result_.exit_code, 0) << result_.err;
+  const fs::path out = dir_ / "out";
+  const auto j = read_report(out);
+  const core::HexMesh gridded = core::hexes_of(io::read_mesh(out / "hex.mesh"));
   const core::HexMesh hex = core::hexes_of(io::read_mesh(out / "hex_optimized.mesh"));
-  EXPECT_EQ(static_cast<int>(hex.cells.size()), j["hexes"].get<int>());
+  ASSERT_FALSE(gridded.cells.empty());
+  // The optimization moves vertices only.
+  EXPECT_EQ(hex.cells, gridded.cells);
+  EXPECT_EQ(hex.points.size(), gridded.points.size());
+  EXPECT_EQ(static_cast<int>(gridded.cells.size()), j["hexes"].get<int>());
   // The target was 3000 hexes; the simplified box is scaled by an integer, so within a factor 2.
   EXPECT_GT(hex.cells.size(), 1500u);
   EXPECT_LT(hex.cells.size(), 6000u);
+  // The gridded figures of the report are those of hex.mesh.
+  const quality::ScaledJacobianSummary g = quality::scaled_jacobian(gridded);
+  EXPECT_EQ(g.inverted + g.invalid, j["gridded"]["inverted"].get<int>());
+  EXPECT_NEAR(g.min, j["gridded"]["msj"].get<double>(), 1e-12);
+  EXPECT_NEAR(g.average, j["gridded"]["asj"].get<double>(), 1e-12);
+  // The final mesh: every hex positive, the report's figures, one block.
   const quality::ScaledJacobianSummary sj = quality::scaled_jacobian(hex);
   EXPECT_EQ(sj.inverted, 0);
   EXPECT_EQ(sj.invalid, 0);
   EXPECT_GT(sj.min, 0.0);
+  EXPECT_EQ(j["final"]["inverted"].get<int>(), 0);
   EXPECT_NEAR(sj.min, j["final"]["msj"].get<double>(), 1e-12);
-  // A box is one block, before and after simplification, and in the final mesh.
-  EXPECT_EQ(j["hex_domains_after"], 1);
+  EXPECT_NEAR(sj.average, j["final"]["asj"].get<double>(), 1e-12);
   EXPECT_EQ(quality::hex_domains(hex).domains, 1);
   EXPECT_EQ(j["final"]["domains"], 1);
   EXPECT_LE(j["final"]["hausdorff_relative"].get<double>(), 0.009);
+  // The gridded hexes fill the box: volume 1 x 2 x 1.5. The map takes chart planes to the box's
+  // faces and polycube edges to its edges, so every boundary lattice point lands on the box's
+  // boundary (flat: no chord is lost).
+  EXPECT_NEAR(core::signed_volume(core::boundary(gridded).surface), 3.0, 1e-9);
+}
+
+TEST_F(RunBox, HexQualityVtkIsTheFinalMeshWithItsQualityAndBlocks) {
+  ASSERT_EQ(result_.exit_code, 0) << result_.err;
+  const fs::path out = dir_ / "out";
+  const auto j = read_report(out);
   const core::MeshData vtk = io::read_mesh(out / "hex_quality.vtk");
-  EXPECT_EQ(vtk.hexes.size(), hex.cells.size());
+  const core::HexMesh hex = core::hexes_of(io::read_mesh(out / "hex_optimized.mesh"));
+  EXPECT_TRUE(vtk.tets.empty() && vtk.quads.empty() && vtk.triangles.empty());
+  EXPECT_EQ(vtk.hexes, hex.cells);
+  EXPECT_EQ(vtk.points, hex.points);  // both written in the shortest form that reads back exactly
+  const std::vector<double> sj = cell_field(vtk, "scaled_jacobian");
+  ASSERT_EQ(sj.size(), hex.cells.size());
+  const quality::ScaledJacobianSummary mine = quality::scaled_jacobian(hex);
+  EXPECT_NEAR(*std::min_element(sj.begin(), sj.end()), mine.min, 1e-12);
+  EXPECT_NEAR(*std::min_element(sj.begin(), sj.end()), j["final"]["msj"].get<double>(), 1e-12);
+  EXPECT_LE(*std::max_element(sj.begin(), sj.end()), 1.0 + 1e-12);
+  const std::vector<double> block = cell_field(vtk, "block_id");
+  ASSERT_EQ(block.size(), hex.cells.size());
+  EXPECT_EQ(std::set<double>(block.begin(), block.end()).size(), static_cast<std::size_t>(j["final"]["domains"].get<int>()));
+}
+
+TEST_F(RunBox, QuadVtkIsTheBoundaryOfTheGriddedMeshWithSixPatches) {
+  ASSERT_EQ(result_.exit_code, 0) << result_.err;
+  const fs::path out = dir_ / "out";
+  const auto j = read_report(out);
+  const core::MeshData vtk = io::read_mesh(out / "quad.vtk");
+  EXPECT_TRUE(vtk.hexes.empty() && vtk.tets.empty() && vtk.triangles.empty());
+  ASSERT_FALSE(vtk.quads.empty());
+  EXPECT_EQ(static_cast<int>(vtk.quads.size()), j["quads"].get<int>());
+  // The quad mesh is the lattice's boundary: as many quads as hex.mesh has boundary faces, the
+  // same points, a closed surface enclosing the box's volume.
+  const core::HexMesh gridded = core::hexes_of(io::read_mesh(out / "hex.mesh"));
+  const core::HexBoundary b = core::boundary(gridded);
+  EXPECT_EQ(vtk.quads.size(), b.surface.cells.size());
+  core::QuadMesh quads = core::quads_of(vtk);
+  core::remove_unreferenced_points(quads);
+  std::set<std::array<double, 3>> quad_points, boundary_points;
+  for (const auto& p : quads.points) quad_points.insert({p.x(), p.y(), p.z()});
+  for (const auto& p : b.surface.points) boundary_points.insert({p.x(), p.y(), p.z()});
+  EXPECT_EQ(quad_points, boundary_points);
+  EXPECT_NEAR(core::signed_volume(quads), 3.0, 1e-9);
+  const std::vector<double> sj = cell_field(vtk, "scaled_jacobian");
+  ASSERT_EQ(sj.size(), vtk.quads.size());
+  EXPECT_GT(*std::min_element(sj.begin(), sj.end()), 0.0);
+  // The patches of a box's quad mesh are its 6 faces, the report's #dom after simplification.
+  const std::vector<double> patch = cell_field(vtk, "patch_id");
+  ASSERT_EQ(patch.size(), vtk.quads.size());
+  EXPECT_EQ(std::set<double>(patch.begin(), patch.end()).size(), 6u);
+  EXPECT_EQ(static_cast<int>(std::set<double>(patch.begin(), patch.end()).size()),
+            j["quad_domains_after"].get<int>());
 }
 
 TEST_F(RunBox, SameInputSameOutput) {
@@ -122,6 +326,7 @@ TEST(RunCli, OpenSurfaceStopsWithExitTwoBeforeAnyHeavyWork) {
   const auto j = nlohmann::json::parse(slurp(dir / "out" / "report.json"));
   EXPECT_FALSE(j["ok"].get<bool>());
   EXPECT_EQ(j["failure"]["stage"], "input");
+  expect_stopped_at(r, dir / "out", "input", 2, {});
 }
 
 TEST(RunCli, NonManifoldSurfaceStopsWithExitTwo) {
@@ -138,17 +343,111 @@ TEST(RunCli, NonManifoldSurfaceStopsWithExitTwo) {
   EXPECT_FALSE(fs::exists(dir / "out" / "construct"));
 }
 
-TEST(RunCli, AFailingStageIsNamedAndEarlierResultsAreKept) {
-  // A lattice bound far too small for the requested hexes makes the gridding refuse: the
-  // construction and simplification results must stay, the stage must be named.
-  const fs::path dir = temp_dir("fail");
+// A closed, manifold surface with 4 triangles: a polycube has at least 6 charts and a labeling
+// gives each triangle one label, so no labeling can be valid and the construction must fail --
+// exit 3 (the algorithm found no result; the file itself is fine), no map written.
+TEST(RunCli, ConstructFailureExitsThreeAndWritesNoMap) {
+  const fs::path dir = temp_dir("construct_fails");
+  core::TriMesh tet;
+  tet.points = {core::Vec3(0, 0, 0), core::Vec3(1, 0, 0), core::Vec3(0, 1, 0), core::Vec3(0, 0, 1)};
+  tet.cells = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  write_surface(dir / "tetrahedron.obj", tet);
+  const CliResult r = run(dir / "tetrahedron.obj", dir / "out", "--hexes 100");
+  expect_stopped_at(r, dir / "out", "construct", 3, {"input"});
+  EXPECT_NE(r.err.find("no valid polycube labeling"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out" / "construct"));
+  const auto j = read_report(dir / "out");
+  EXPECT_EQ(j["tets"], -1);  // the construction's figures stay "not computed"
+  EXPECT_EQ(j["hexes"], -1);
+  // The summary table is printed for a failure of the algorithm (not for bad input).
+  EXPECT_NE(r.out.find("| construct |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("FAILED"), std::string::npos) << r.out;
+}
+
+// No small input makes the simplification (nor, below, the optimization and the quality stage)
+// fail reliably: a failure there is a limitation of the algorithm that the algorithm's work
+// keeps moving. The hidden --inject-failure STAGE (pipeline.h) makes the stage fail at its start
+// the way a real failure does (a GeometryError), so the handling of the failure is what is
+// tested: exit code, stage named, earlier results kept and readable, nothing later written.
+TEST(RunCli, SimplifyFailureExitsThreeAndKeepsTheConstructedMap) {
+  const fs::path dir = temp_dir("simplify_fails");
   write_surface(dir / "box.obj", test::make_box(1.0, 1.0, 1.0, 2));
-  const CliResult r = run("\"" + (dir / "box.obj").string() + "\" -o \"" + (dir / "out").string() +
-                           "\" --no-simplify --hexes 2000000000");
-  EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.err.find("stage hexmesh failed"), std::string::npos) << r.err;
-  EXPECT_TRUE(fs::exists(dir / "out" / "construct" / "polycube.mesh"));
-  EXPECT_FALSE(fs::exists(dir / "out" / "hex.mesh"));
+  const CliResult r = run(dir / "box.obj", dir / "out", "--hexes 100 --inject-failure simplify");
+  expect_stopped_at(r, dir / "out", "simplify", 3, {"input", "construct"});
+  EXPECT_NE(r.err.find("injected failure"), std::string::npos) << r.err;
+  const auto j = read_report(dir / "out");
+  expect_valid_map(dir / "out" / "construct", j);
+  EXPECT_EQ(j["hex_domains_after"], -1);
+  EXPECT_EQ(j["hexes"], -1);
+  EXPECT_NE(r.out.find("| simplify |"), std::string::npos) << r.out;
+}
+
+// The lattice of 2e9 hexes is beyond the gridding's bound (mesh/grid.h, max_lattice_points):
+// the request cannot be met for this polycube, which only the hexmesh stage can tell. The file
+// is fine, so not exit 2; the command line is well formed, so not exit 1: exit 3.
+TEST(RunCli, ImpossibleHexCountStopsTheHexmeshStageWithExitThree) {
+  const fs::path dir = temp_dir("hexmesh_fails");
+  write_surface(dir / "box.obj", test::make_box(1.0, 1.0, 1.0, 2));
+  const CliResult r = run(dir / "box.obj", dir / "out", "--hexes 2000000000");
+  expect_stopped_at(r, dir / "out", "hexmesh", 3, {"input", "construct", "simplify"});
+  EXPECT_NE(r.err.find("too large"), std::string::npos) << r.err;
+  const auto j = read_report(dir / "out");
+  const core::PolycubeMap built = expect_valid_map(dir / "out" / "construct", j);
+  const core::PolycubeMap simplified = expect_valid_map(dir / "out" / "simplify", j);
+  EXPECT_EQ(simplified.tets, built.tets);
+  EXPECT_EQ(j["hexes"], -1);
+  EXPECT_EQ(j["grid_scale"], -1.0);
+}
+
+TEST(RunCli, ImpossibleHexCountWithoutSimplificationKeepsOnlyTheConstructedMap) {
+  const fs::path dir = temp_dir("hexmesh_fails_nosimplify");
+  write_surface(dir / "box.obj", test::make_box(1.0, 1.0, 1.0, 2));
+  const CliResult r = run(dir / "box.obj", dir / "out", "--no-simplify --hexes 2000000000");
+  expect_stopped_at(r, dir / "out", "hexmesh", 3, {"input", "construct"});
+  expect_valid_map(dir / "out" / "construct", read_report(dir / "out"));
+}
+
+TEST(RunCli, OptimizeFailureExitsThreeAndKeepsTheGriddedMeshes) {
+  const fs::path dir = temp_dir("optimize_fails");
+  write_surface(dir / "box.obj", test::make_box(1.0, 1.0, 1.0, 2));
+  const CliResult r = run(dir / "box.obj", dir / "out", "--hexes 100 --inject-failure optimize");
+  expect_stopped_at(r, dir / "out", "optimize", 3, {"input", "construct", "simplify", "hexmesh"});
+  const fs::path out = dir / "out";
+  const auto j = read_report(out);
+  expect_valid_map(out / "construct", j);
+  expect_valid_map(out / "simplify", j);
+  // The kept meshes read back with the report's counts and gridded quality.
+  const core::HexMesh hex = core::hexes_of(io::read_mesh(out / "hex.mesh"));
+  ASSERT_FALSE(hex.cells.empty());
+  EXPECT_EQ(static_cast<int>(hex.cells.size()), j["hexes"].get<int>());
+  const quality::ScaledJacobianSummary sj = quality::scaled_jacobian(hex);
+  EXPECT_EQ(sj.inverted + sj.invalid, j["gridded"]["inverted"].get<int>());
+  EXPECT_NEAR(sj.min, j["gridded"]["msj"].get<double>(), 1e-12);
+  const core::MeshData quads = io::read_mesh(out / "quad.vtk");
+  EXPECT_EQ(static_cast<int>(quads.quads.size()), j["quads"].get<int>());
+  EXPECT_EQ(quads.quads.size(), core::boundary(hex).surface.cells.size());
+  EXPECT_EQ(cell_field(quads, "patch_id").size(), quads.quads.size());
+  // The final figures stay "not computed".
+  EXPECT_EQ(j["final"]["inverted"], -1);
+  EXPECT_EQ(j["final"]["msj"], -2.0);
+}
+
+TEST(RunCli, QualityFailureWithoutOptimizationKeepsTheGriddedMeshes) {
+  const fs::path dir = temp_dir("quality_fails");
+  write_surface(dir / "box.obj", test::make_box(1.0, 1.0, 1.0, 2));
+  const CliResult r = run(dir / "box.obj", dir / "out", "--hexes 100 --no-optimize --inject-failure quality");
+  expect_stopped_at(r, dir / "out", "quality", 3, {"input", "construct", "simplify", "hexmesh"});
+  const auto j = read_report(dir / "out");
+  EXPECT_EQ(static_cast<int>(core::hexes_of(io::read_mesh(dir / "out" / "hex.mesh")).cells.size()),
+            j["hexes"].get<int>());
+}
+
+TEST(RunCli, InjectingAFailureIntoAnUnknownStageIsAUsageError) {
+  const fs::path dir = temp_dir("inject_unknown");
+  write_surface(dir / "box.obj", test::make_box(1.0, 1.0, 1.0, 1));
+  const CliResult r = run(dir / "box.obj", dir / "out", "--inject-failure gridding");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
 }  // namespace

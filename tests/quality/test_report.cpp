@@ -4,6 +4,7 @@
 
 #include "core/topology.h"
 #include "io/mesh_io.h"
+#include "independent_counts.h"
 #include "quality_fixtures.h"
 
 #include <gtest/gtest.h>
@@ -66,6 +67,17 @@ TEST(HexReport, SyntheticMeshes) {
   EXPECT_EQ(box.domains->domains, 1);
   EXPECT_EQ(box.surface_singular_vertices, 8);
   EXPECT_EQ(box.surface_domains, 6);
+
+  // The independent reference gives the hand-derived counts too (a box: 8 corners, 12 edges
+  // of 4 lattice edges each, one block, 6 patches; padded: 1 core block + 6 padding blocks).
+  const test::IndependentCounts ref = test::independent_counts(test::gridded_box(2, 2, 2, 2));
+  EXPECT_EQ(ref.singular_vertices, 8);
+  EXPECT_EQ(ref.singular_edges, 48);
+  EXPECT_EQ(ref.boundary_singular_edges, 48);
+  EXPECT_EQ(ref.domains, 1);
+  EXPECT_EQ(ref.surface_singular_vertices, 8);
+  EXPECT_EQ(ref.surface_domains, 6);
+  EXPECT_EQ(test::independent_counts(test::padded_box(2)).domains, 7);
 
   const auto padded = hex_report(test::padded_box(2));
   expect_consistent(padded);
@@ -130,6 +142,15 @@ TEST_P(DataMeshes, ConsistentReport) {
   EXPECT_GT(r.singularities->singular_vertices, 0);
   EXPECT_GT(r.singularities->singular_edges, 0);
   EXPECT_GE(r.domains->domains, 1);
+  // Every printed count checked against the independent count from the raw cells.
+  const test::IndependentCounts ref = test::independent_counts(m);
+  EXPECT_EQ(r.singularities->singular_edges, ref.singular_edges);
+  EXPECT_EQ(r.singularities->boundary_singular_edges, ref.boundary_singular_edges);
+  EXPECT_EQ(r.singularities->interior_singular_edges, ref.interior_singular_edges);
+  EXPECT_EQ(r.singularities->singular_vertices, ref.singular_vertices);
+  EXPECT_EQ(r.domains->domains, ref.domains);
+  EXPECT_EQ(r.surface_singular_vertices, ref.surface_singular_vertices);
+  EXPECT_EQ(r.surface_domains, ref.surface_domains);
   std::cout << name << ": #H " << r.hexes << "  mSJ " << r.sj.min << "  aSJ " << r.sj.average
             << "  #Sv " << r.singularities->singular_vertices << "  #Se "
             << r.singularities->singular_edges << "  #D " << r.domains->domains << "  surface #sv "

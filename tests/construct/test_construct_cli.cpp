@@ -1,0 +1,205 @@
+// End-to-end tests of `polycube construct`: the outputs read back and consistent with the report,
+// exit code 2 on bad input, exit code 3 when no certified map is reached, and the files
+// `--keep-failed` promises (README: the best attempt as uncertified_*.mesh), read back.
+#include "core/polycube_map.h"
+#include "core/topology.h"
+#include "core/types.h"
+#include "io/mesh_io.h"
+#include "io/polycube_map_io.h"
+#include "structure/structure.h"
+#include "structure/validate.h"
+
+#include "cli/run_cli.h"
+#include "construct/shapes.h"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace polycube {
+namespace {
+
+namespace fs = std::filesystem;
+
+using test::CliResult;
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path d =
+      fs::temp_directory_path() / ("polycube_construct_cli_test_" + name + "_" + std::to_string(getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+void write_surface(const fs::path& p, const core::TriMesh& m) {
+  core::MeshData d;
+  d.points = m.points;
+  d.triangles = m.cells;
+  io::write_mesh(p, d);
+}
+
+//! `polycube construct IN -o OUT <more>` with quoted paths.
+CliResult construct(const fs::path& in, const fs::path& out, const std::string& more = "") {
+  return test::run_cli("construct \"" + in.string() + "\" -o \"" + out.string() + "\" " + more);
+}
+
+//! A closed, manifold surface of 4 triangles: no labeling of 4 triangles has the 6 charts a
+//! polycube needs at least, so no construction can succeed.
+core::TriMesh tetrahedron() {
+  core::TriMesh t;
+  t.points = {core::Vec3(0, 0, 0), core::Vec3(1, 0, 0), core::Vec3(0, 1, 0), core::Vec3(0, 0, 1)};
+  t.cells = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  return t;
+}
+
+//! The tets of a `.mesh` file's `Triangles` block checked against its tets: the boundary faces
+//! (faces of exactly one tet), each once, with one label in 0..5 each.
+void expect_labeled_boundary(const core::MeshData& d, const std::string& what) {
+  ASSERT_EQ(d.triangle_labels.size(), d.triangles.size()) << what;
+  for (int l : d.triangle_labels) {
+    EXPECT_GE(l, 0) << what;
+    EXPECT_LE(l, 5) << what;
+  }
+  const core::TetBoundary b = core::boundary(core::tets_of(d));
+  std::vector<std::array<int, 3>> expected, got;
+  for (const auto& f : b.surface.cells) {
+    std::array<int, 3> k{b.vertex_map[f[0]], b.vertex_map[f[1]], b.vertex_map[f[2]]};
+    std::sort(k.begin(), k.end());
+    expected.push_back(k);
+  }
+  for (const auto& t : d.triangles) {
+    std::array<int, 3> k{t[0], t[1], t[2]};
+    std::sort(k.begin(), k.end());
+    got.push_back(k);
+  }
+  std::sort(expected.begin(), expected.end());
+  std::sort(got.begin(), got.end());
+  EXPECT_EQ(got, expected) << what << ": the Triangles block is not the tets' boundary";
+}
+
+//! On an axis-aligned box every boundary triangle's label is the axis of its outward model normal
+//! (the labeling of a box has fidelity 0), for every triangle of the Triangles block.
+void expect_box_labels(const core::MeshData& d, const std::string& what) {
+  ASSERT_EQ(d.triangle_labels.size(), d.triangles.size()) << what;
+  std::set<int> used;
+  for (std::size_t i = 0; i < d.triangles.size(); ++i) {
+    const auto& t = d.triangles[i];
+    const core::Vec3 n = (d.points[t[1]] - d.points[t[0]]).cross(d.points[t[2]] - d.points[t[0]]);
+    EXPECT_EQ(d.triangle_labels[i], core::dominant_axis_label(n)) << what << ": triangle " << i;
+    used.insert(d.triangle_labels[i]);
+  }
+  EXPECT_EQ(used.size(), 6u) << what;
+}
+
+TEST(ConstructCli, BoxWritesACertifiedMapThatReadsBackWithTheReportsCounts) {
+  const fs::path dir = temp_dir("box");
+  write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
+  const CliResult r = construct(dir / "box.obj", dir / "out");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const core::PolycubeMap map = io::read_polycube_map(dir / "out" / "model.mesh", dir / "out" / "polycube.mesh");
+  const structure::MapDiagnosis d = structure::diagnose_map(map);
+  EXPECT_TRUE(d.valid()) << (d.failures.empty() ? "" : d.failures.front());
+  std::ifstream jf(dir / "out" / "report.json");
+  const auto j = nlohmann::json::parse(jf);
+  EXPECT_TRUE(j["certified"].get<bool>());
+  EXPECT_EQ(j["tets"].get<int>(), map.num_tets());
+  EXPECT_EQ(j["vertices"].get<int>(), map.num_vertices());
+  const structure::PolycubeStructure s = structure::extract_structure(map);
+  EXPECT_EQ(static_cast<int>(s.charts.size()), 6);  // a box
+  EXPECT_EQ(static_cast<int>(s.corners.size()), 8);
+  EXPECT_EQ(j["charts"], 6);
+  EXPECT_EQ(j["corners"], 8);
+  // labeling.txt: one label per Triangles entry of model.mesh, the same as its references.
+  const core::MeshData model = io::read_mesh(dir / "out" / "model.mesh");
+  expect_labeled_boundary(model, "model.mesh");
+  expect_box_labels(model, "model.mesh");
+  std::ifstream lf(dir / "out" / "labeling.txt");
+  std::vector<int> labels;
+  for (int l; lf >> l;) labels.push_back(l);
+  EXPECT_EQ(labels, model.triangle_labels);
+  EXPECT_EQ(j["boundary_triangles"].get<std::size_t>(), labels.size());
+}
+
+TEST(ConstructCli, NoPossibleLabelingExitsThreeWithTheReasonAndWritesNothing) {
+  const fs::path dir = temp_dir("tetrahedron");
+  write_surface(dir / "tetrahedron.obj", tetrahedron());
+  const CliResult r = construct(dir / "tetrahedron.obj", dir / "out", "--keep-failed \"" + (dir / "kept").string() + "\"");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("no valid polycube labeling"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  // No attempt got as far as a deformation: there is no attempt to keep (README), not even a folder.
+  EXPECT_FALSE(fs::exists(dir / "kept"));
+}
+
+TEST(ConstructCli, BadInputExitsTwoWithOneLineAndWritesNothing) {
+  const fs::path dir = temp_dir("bad");
+  auto open = test::make_box(1.0, 1.0, 1.0, 2);
+  open.cells.pop_back();
+  write_surface(dir / "open.obj", open);
+  std::ofstream(dir / "garbage.obj") << "v 0 0 0\nv 1 0 0\nf 1 2 7\n";
+  auto two = test::make_box(1.0, 1.0, 1.0, 1);
+  const auto b = test::make_box(1.0, 1.0, 1.0, 1, core::Vec3(0.5, 0.4, 0.3));
+  const int off = two.num_points();
+  for (const auto& p : b.points) two.points.push_back(p);
+  for (const auto& t : b.cells) two.cells.push_back({t[0] + off, t[1] + off, t[2] + off});
+  write_surface(dir / "two.obj", two);
+  for (const auto& [file, says] : std::vector<std::pair<std::string, std::string>>{
+           {"open.obj", "open"}, {"garbage.obj", "garbage.obj"}, {"two.obj", "self-intersect"}, {"missing.obj", "missing.obj"}}) {
+    SCOPED_TRACE(file);
+    const CliResult r = construct(dir / file, dir / "out", "--keep-failed \"" + (dir / "kept").string() + "\"");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "out"));
+    EXPECT_FALSE(fs::exists(dir / "kept"));
+  }
+}
+
+// No small input makes the certification fail reliably (every small shape tried certifies, even
+// with --iterations 1 --refine-rounds 0 --no-boundary-first): the hidden
+// `--inject-failure certify` reports the (certified) result as not certified, so what is tested
+// is what --keep-failed writes and the exit code, not why an attempt fails.
+TEST(ConstructCli, UncertifiedExitsThreeAndKeepFailedWritesTheAttemptReadably) {
+  const fs::path dir = temp_dir("uncertified");
+  write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
+  const fs::path kept = dir / "kept";
+  const CliResult r =
+      construct(dir / "box.obj", dir / "out", "--inject-failure certify --keep-failed \"" + kept.string() + "\"");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("polycube: error: polycube map not certified"), std::string::npos) << r.err;
+  // Never written as a result.
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  // The attempt, for diagnosis: two tet meshes with identical Tetrahedra blocks, the boundary
+  // triangles labeled, the same in both files.
+  ASSERT_TRUE(fs::exists(kept / "uncertified_model.mesh"));
+  ASSERT_TRUE(fs::exists(kept / "uncertified_polycube.mesh"));
+  const core::PolycubeMap map =
+      io::read_polycube_map(kept / "uncertified_model.mesh", kept / "uncertified_polycube.mesh");
+  EXPECT_GT(map.num_tets(), 0);
+  const core::MeshData model = io::read_mesh(kept / "uncertified_model.mesh");
+  const core::MeshData cube = io::read_mesh(kept / "uncertified_polycube.mesh");
+  expect_labeled_boundary(model, "uncertified_model.mesh");
+  expect_box_labels(model, "uncertified_model.mesh");
+  EXPECT_EQ(model.triangles, cube.triangles);
+  EXPECT_EQ(model.triangle_labels, cube.triangle_labels);
+  // The model positions are the input box's: its bounding box.
+  const core::BoundingBox bb = core::bounding_box(map.model);
+  EXPECT_NEAR((bb.min - core::Vec3(0, 0, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((bb.max - core::Vec3(1, 2, 1.5)).norm(), 0.0, 1e-12);
+  // Without --keep-failed: the same exit code, nothing written.
+  const CliResult plain = construct(dir / "box.obj", dir / "out2", "--inject-failure certify");
+  EXPECT_EQ(plain.exit_code, 3) << plain.err;
+  EXPECT_FALSE(fs::exists(dir / "out2"));
+}
+
+}  // namespace
+}  // namespace polycube

@@ -1,0 +1,316 @@
+// Tests of the LP / MILP adapter (solve/milp.h): hand-solved programs through both paths (CLP for
+// LPs, CBC for MILPs), infeasible and unbounded programs, the time limit and the error paths.
+#include "solve/milp.h"
+
+#include "core/errors.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace polycube::solve {
+namespace {
+
+constexpr double kTol = 1e-7;
+
+//! Violation of bounds, rows and integrality of x in p (0 when x is feasible).
+double infeasibility(const LinearProgram& p, const std::vector<double>& x) {
+  double worst = 0;
+  for (int j = 0; j < p.num_variables(); ++j) {
+    worst = std::max({worst, p.lower[j] - x[j], x[j] - p.upper[j]});
+    if (!p.integer.empty() && p.integer[j]) worst = std::max(worst, std::abs(x[j] - std::round(x[j])));
+  }
+  for (const auto& r : p.rows) {
+    double a = 0;
+    for (std::size_t k = 0; k < r.columns.size(); ++k) a += r.coefficients[k] * x[r.columns[k]];
+    worst = std::max({worst, r.lower - a, a - r.upper});
+  }
+  return worst;
+}
+
+double cost_of(const LinearProgram& p, const std::vector<double>& x) {
+  double c = 0;
+  for (int j = 0; j < p.num_variables(); ++j) c += p.cost[j] * x[j];
+  return c;
+}
+
+//! Optimal status, x and objective as expected (and the objective is c·x).
+void expect_optimum(const LinearProgram& p, const MilpResult& r, const std::vector<double>& x,
+                    double objective) {
+  ASSERT_EQ(r.status, MilpStatus::Optimal) << status_name(r.status);
+  ASSERT_EQ(r.x.size(), x.size());
+  for (std::size_t j = 0; j < x.size(); ++j) EXPECT_NEAR(r.x[j], x[j], kTol) << "x[" << j << "]";
+  EXPECT_NEAR(r.objective, objective, kTol);
+  EXPECT_NEAR(cost_of(p, r.x), objective, kTol);
+  EXPECT_LE(infeasibility(p, r.x), kTol);
+}
+
+// --- linear programs (CLP) ----------------------------------------------------------------------
+
+TEST(Milp, WyndorLpHasItsTextbookOptimum) {
+  // Hillier & Lieberman's Wyndor: max 3x + 5y, x <= 4, 2y <= 12, 3x + 2y <= 18, x, y >= 0.
+  // Vertex y = 6 (2y = 12), 3x = 18 - 12 -> x = 2: z = 6 + 30 = 36 (next vertex (4, 3): 27).
+  LinearProgram p;
+  const int x = p.add_variable(-3.0, 0.0);
+  const int y = p.add_variable(-5.0, 0.0);
+  p.add_row({x}, {1.0}, -kInfinity, 4.0);
+  p.add_row({y}, {2.0}, -kInfinity, 12.0);
+  p.add_row({x, y}, {3.0, 2.0}, -kInfinity, 18.0);
+  const MilpResult r = solve_program(p);
+  EXPECT_EQ(r.solver, "CLP dual simplex");
+  expect_optimum(p, r, {2.0, 6.0}, -36.0);
+}
+
+TEST(Milp, EqualityRowFreeVariableAndUpperBound) {
+  // min x + 2y, x + y = 3, x <= 2 (x >= 0), y free: y = 3 - x gives 6 - x, least at x = 2, y = 1: 4.
+  LinearProgram p;
+  p.add_variable(1.0, 0.0, 2.0);
+  p.add_variable(2.0);  // free
+  p.add_row({0, 1}, {1.0, 1.0}, 3.0, 3.0);
+  expect_optimum(p, solve_program(p), {2.0, 1.0}, 4.0);
+}
+
+TEST(Milp, RangedRowIsActiveOnEitherSide) {
+  // Row 1 <= x + 2y <= 4, x in [0, 2], y >= 0.
+  LinearProgram p;
+  p.add_variable(0.0, 0.0, 2.0);
+  p.add_variable(0.0, 0.0);
+  p.add_row({0, 1}, {1.0, 2.0}, 1.0, 4.0);
+  // min x + y: y costs 1/2 per unit of row (x costs 1), so x = 0, y = 1/2 on the lower side: 1/2.
+  p.cost = {1.0, 1.0};
+  expect_optimum(p, solve_program(p), {0.0, 0.5}, 0.5);
+  // min -x - y: x gives 1 per unit of row (y 1/2), so x = 2, then 2y = 4 - 2 on the upper side: -3.
+  p.cost = {-1.0, -1.0};
+  expect_optimum(p, solve_program(p), {2.0, 1.0}, -3.0);
+}
+
+TEST(Milp, InfeasibleLp) {
+  // x + y <= 1 and x + y >= 2.
+  LinearProgram p;
+  p.add_variable(1.0, 0.0);
+  p.add_variable(1.0, 0.0);
+  p.add_row({0, 1}, {1.0, 1.0}, -kInfinity, 1.0);
+  p.add_row({0, 1}, {1.0, 1.0}, 2.0);
+  const MilpResult r = solve_program(p);
+  EXPECT_EQ(r.status, MilpStatus::Infeasible) << status_name(r.status);
+  EXPECT_TRUE(r.x.empty());
+}
+
+TEST(Milp, UnboundedLp) {
+  // min -x - y, x - y <= 1, x, y >= 0: (t, t) is feasible for every t >= 0, cost -2t.
+  LinearProgram p;
+  p.add_variable(-1.0, 0.0);
+  p.add_variable(-1.0, 0.0);
+  p.add_row({0, 1}, {1.0, -1.0}, -kInfinity, 1.0);
+  const MilpResult r = solve_program(p);
+  EXPECT_EQ(r.status, MilpStatus::Unbounded) << status_name(r.status);
+  EXPECT_TRUE(r.x.empty());
+}
+
+// --- mixed-integer programs (CBC) ---------------------------------------------------------------
+
+//! The 0/1 knapsack values {60, 100, 120}, weights {10, 20, 30}, capacity 50 (maximized).
+LinearProgram knapsack(bool integer) {
+  LinearProgram p;
+  for (double v : {60.0, 100.0, 120.0}) p.add_variable(-v, 0.0, 1.0, integer);
+  p.add_row({0, 1, 2}, {10.0, 20.0, 30.0}, -kInfinity, 50.0);
+  return p;
+}
+
+TEST(Milp, KnapsackIntegerOptimumDiffersFromItsRelaxation) {
+  // Relaxation: by value/weight 6 > 5 > 4, items 1 and 2 whole (weight 30) and 20/30 of item 3:
+  // 60 + 100 + 80 = 240. Integer: {1,2} 160, {1,3} 180, {2,3} 220 (weight 50), {1,2,3} too heavy.
+  const LinearProgram relaxed = knapsack(false);
+  expect_optimum(relaxed, solve_program(relaxed), {1.0, 1.0, 2.0 / 3.0}, -240.0);
+  const LinearProgram p = knapsack(true);
+  const MilpResult r = solve_program(p);
+  EXPECT_EQ(r.solver, "CBC branch and cut");
+  expect_optimum(p, r, {0.0, 1.0, 1.0}, -220.0);
+}
+
+TEST(Milp, MixedIntegerAndContinuousVariables) {
+  // max 2x + y, x + y <= 4, 2x <= 5, x integer >= 0, y >= 0. Relaxation: x = 2.5, y = 1.5: 6.5.
+  // For integer x <= 2, y = 4 - x and 2x + y = 4 + x: best at x = 2, y = 2: 6.
+  LinearProgram p;
+  p.add_variable(-2.0, 0.0, kInfinity, true);
+  p.add_variable(-1.0, 0.0);
+  p.add_row({0, 1}, {1.0, 1.0}, -kInfinity, 4.0);
+  p.add_row({0}, {2.0}, -kInfinity, 5.0);
+  expect_optimum(p, solve_program(p), {2.0, 2.0}, -6.0);
+  p.integer.clear();  // all continuous: the relaxation
+  expect_optimum(p, solve_program(p), {2.5, 1.5}, -6.5);
+}
+
+TEST(Milp, InfeasibleMilpWithFeasibleRelaxation) {
+  // 2x + 2y = 3 with x, y integer in [0, 5]: the left side is even. (x = 1.5, y = 0 solves the LP.)
+  LinearProgram p;
+  p.add_variable(1.0, 0.0, 5.0, true);
+  p.add_variable(1.0, 0.0, 5.0, true);
+  p.add_row({0, 1}, {2.0, 2.0}, 3.0, 3.0);
+  const MilpResult r = solve_program(p);
+  EXPECT_EQ(r.status, MilpStatus::Infeasible) << status_name(r.status);
+  EXPECT_TRUE(r.x.empty());
+  p.integer.clear();
+  EXPECT_EQ(solve_program(p).status, MilpStatus::Optimal);
+}
+
+TEST(Milp, UnboundedMilp) {
+  // min -x - y, x - y <= 1, x integer >= 0, y >= 0: (t, t) for every integer t, cost -2t.
+  LinearProgram p;
+  p.add_variable(-1.0, 0.0, kInfinity, true);
+  p.add_variable(-1.0, 0.0);
+  p.add_row({0, 1}, {1.0, -1.0}, -kInfinity, 1.0);
+  const MilpResult r = solve_program(p);
+  EXPECT_EQ(r.solver, "CBC branch and cut");
+  EXPECT_EQ(r.status, MilpStatus::Unbounded) << status_name(r.status);
+  EXPECT_TRUE(r.x.empty());
+  // Both variables integer and a row x - y = -1: (t, t + 1) for every integer t >= 0.
+  p.integer = {1, 1};
+  p.rows[0].lower = -1.0;
+  p.rows[0].upper = -1.0;
+  EXPECT_EQ(solve_program(p).status, MilpStatus::Unbounded);
+}
+
+TEST(Milp, IntegerInfeasibleProgramWithUnboundedRelaxationIsNotUnbounded) {
+  // min -x, 2x - 2y = 1, x, y integer >= 0: the relaxation is unbounded ((t + 1/2, t)) but the
+  // left side is even, so there is no point. Branch and bound cannot prove that (it may branch
+  // forever): infeasible or failed (undecided), never unbounded nor a solution.
+  LinearProgram p;
+  p.add_variable(-1.0, 0.0, kInfinity, true);
+  p.add_variable(0.0, 0.0, kInfinity, true);
+  p.add_row({0, 1}, {2.0, -2.0}, 1.0, 1.0);
+  const MilpResult r = solve_program(p);
+  EXPECT_TRUE(r.status == MilpStatus::Infeasible || r.status == MilpStatus::Failed) << status_name(r.status);
+  EXPECT_TRUE(r.x.empty());
+}
+
+//! A market split instance (Cornuéjols & Dawande) with slacks: rows sum_j a_ij x_j + s_i - t_i = b_i,
+//! x binary, s, t >= 0, minimize sum (s_i + t_i). Every a_ij is even and every b_i odd, so the
+//! optimum is >= 1 per row while the LP relaxation reaches 0: branch and bound must enumerate.
+LinearProgram market_split(int rows, int columns, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> half(0, 49);
+  LinearProgram p;
+  for (int j = 0; j < columns; ++j) p.add_variable(0.0, 0.0, 1.0, true);
+  for (int i = 0; i < rows; ++i) {
+    std::vector<int> cols;
+    std::vector<double> coef;
+    double sum = 0;
+    for (int j = 0; j < columns; ++j) {
+      const double a = 2.0 * half(rng);
+      cols.push_back(j);
+      coef.push_back(a);
+      sum += a;
+    }
+    cols.push_back(p.add_variable(1.0, 0.0));
+    coef.push_back(1.0);
+    cols.push_back(p.add_variable(1.0, 0.0));
+    coef.push_back(-1.0);
+    const double b = 2.0 * std::floor(sum / 4.0) + 1.0;  // odd, about half the row sum
+    p.add_row(std::move(cols), std::move(coef), b, b);
+  }
+  return p;
+}
+
+TEST(Milp, TimeLimitStopsBranchAndBound) {
+  const LinearProgram p = market_split(4, 40, 2024);
+  MilpOptions o;
+  o.time_limit = 0.01;
+  const auto t0 = std::chrono::steady_clock::now();
+  const MilpResult r = solve_program(p, o);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_EQ(r.status, MilpStatus::Stopped) << status_name(r.status);
+  // Branch and bound over 2^40 leaves would not end: the limit was honoured (generous bound).
+  EXPECT_LT(seconds, 30.0);
+  if (!r.x.empty()) {
+    ASSERT_EQ(static_cast<int>(r.x.size()), p.num_variables());
+    EXPECT_LE(infeasibility(p, r.x), 1e-6);
+    EXPECT_NEAR(r.objective, cost_of(p, r.x), 1e-6);
+    EXPECT_GE(r.objective, 4.0 - 1e-6);  // parity: every row misses its odd target by >= 1
+  }
+}
+
+TEST(Milp, StoppedRunReturnsAFeasibleIncumbent) {
+  // x = 0 with slacks = b is feasible and depth-first search reaches an integer leaf within some
+  // 50 nodes (CBC's limit is CPU time, some 10^4 nodes in half a second, so load does not matter):
+  // the run stops with a feasible incumbent, no better than the parity bound 4.
+  const LinearProgram p = market_split(4, 40, 7);
+  MilpOptions o;
+  o.time_limit = 0.5;
+  const MilpResult r = solve_program(p, o);
+  EXPECT_EQ(r.status, MilpStatus::Stopped) << status_name(r.status);
+  ASSERT_EQ(static_cast<int>(r.x.size()), p.num_variables());
+  EXPECT_LE(infeasibility(p, r.x), 1e-6);
+  EXPECT_NEAR(r.objective, cost_of(p, r.x), 1e-6);
+  EXPECT_GE(r.objective, 4.0 - 1e-6);
+}
+
+// --- errors and names -------------------------------------------------------------------------
+
+TEST(Milp, InconsistentSizesAndColumnsThrow) {
+  const LinearProgram good = knapsack(true);
+  ASSERT_EQ(solve_program(good).status, MilpStatus::Optimal);
+  {
+    LinearProgram p = good;
+    p.lower.pop_back();
+    EXPECT_THROW(solve_program(p), core::InternalError);
+  }
+  {
+    LinearProgram p = good;
+    p.upper.push_back(1.0);
+    EXPECT_THROW(solve_program(p), core::InternalError);
+  }
+  {
+    LinearProgram p = good;
+    p.integer.pop_back();
+    EXPECT_THROW(solve_program(p), core::InternalError);
+  }
+  {
+    LinearProgram p = good;
+    p.rows[0].coefficients.pop_back();
+    EXPECT_THROW(solve_program(p), core::InternalError);
+  }
+  {
+    LinearProgram p = good;
+    p.add_row({0, 3}, {1.0, 1.0}, 0.0);  // column 3 of 3
+    EXPECT_THROW(solve_program(p), core::InternalError);
+  }
+  {
+    LinearProgram p = good;
+    p.add_row({-1}, {1.0}, 0.0);
+    EXPECT_THROW(solve_program(p), core::InternalError);
+  }
+  {
+    LinearProgram p = knapsack(false);  // the LP path checks columns as well
+    p.add_row({2, 5}, {1.0, 1.0}, 0.0);
+    EXPECT_THROW(solve_program(p), core::InternalError);
+  }
+}
+
+TEST(Milp, AddVariableKeepsIntegerFlagsAligned) {
+  // Continuous variables before the first integer one get a 0 flag; later ones as well.
+  LinearProgram p;
+  p.add_variable(1.0);
+  p.add_variable(1.0);
+  EXPECT_TRUE(p.integer.empty());
+  EXPECT_EQ(p.add_variable(1.0, 0.0, 1.0, true), 2);
+  p.add_variable(1.0);
+  EXPECT_EQ(p.integer, (std::vector<char>{0, 0, 1, 0}));
+  EXPECT_EQ(p.num_variables(), 4);
+}
+
+TEST(Milp, StatusNames) {
+  EXPECT_STREQ(status_name(MilpStatus::Optimal), "optimal");
+  EXPECT_STREQ(status_name(MilpStatus::Infeasible), "infeasible");
+  EXPECT_STREQ(status_name(MilpStatus::Unbounded), "unbounded");
+  EXPECT_STREQ(status_name(MilpStatus::Stopped), "stopped");
+  EXPECT_STREQ(status_name(MilpStatus::Failed), "failed");
+}
+
+}  // namespace
+}  // namespace polycube::solve

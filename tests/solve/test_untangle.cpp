@@ -1,0 +1,198 @@
+//! Tests of the untangling engine (solve/untangle.h) and the sparse SPD solver
+//! (solve/sparse_solver.h): element energy derivatives, Cholesky solves, untangling of a folded
+//! grid with fixed and shared coordinates, attractions.
+#include "core/errors.h"
+#include "core/fixtures.h"
+#include "solve/sparse_solver.h"
+#include "solve/untangle.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/SparseCore>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace polycube {
+namespace {
+
+using core::Vec3;
+
+// --- element energy and sparse solver ---------------------------------------------------------
+
+TEST(EllipticEnergy, DerivativesMatchFiniteDifferences) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> U(-1.5, 1.5);
+  for (int trial = 0; trial < 6; ++trial) {
+    Eigen::Matrix3d J;
+    for (int i = 0; i < 9; ++i) J(i / 3, i % 3) = U(rng);
+    if (trial == 0) J = Eigen::Matrix3d::Identity();
+    const double eps = trial % 2 ? 0.3 : 1e-2;
+    const auto e = solve::elliptic_energy(J, eps, 1.0);
+    const double h = 1e-6;
+    for (int i = 0; i < 9; ++i) {
+      Eigen::Matrix3d Jp = J, Jm = J;
+      Jp(i / 3, i % 3) += h;
+      Jm(i / 3, i % 3) -= h;
+      const auto ep = solve::elliptic_energy(Jp, eps, 1.0);
+      const auto em = solve::elliptic_energy(Jm, eps, 1.0);
+      const double scale = 1.0 + std::abs(e.gradient[i]);
+      EXPECT_NEAR((ep.value - em.value) / (2 * h), e.gradient[i], 1e-5 * scale) << "trial " << trial;
+      for (int j = 0; j < 9; ++j)
+        EXPECT_NEAR((ep.gradient[j] - em.gradient[j]) / (2 * h), e.hessian(j, i), 1e-4 * (1.0 + e.hessian.norm()))
+            << "trial " << trial << " (" << j << "," << i << ")";
+    }
+  }
+  // At the identity the energy is minimal over the shape term: value = 1 + λ·2/χ(1,ε) ~ 3.
+  const auto id = solve::elliptic_energy(Eigen::Matrix3d::Identity(), 1e-9, 1.0);
+  EXPECT_NEAR(id.value, 3.0, 1e-9);
+  EXPECT_LT(id.gradient.norm(), 1e-9);
+}
+
+TEST(SparseSpdSolver, SolvesAndRejectsIndefinite) {
+  const int n = 50;
+  std::vector<Eigen::Triplet<double>> trip;
+  for (int i = 0; i < n; ++i) {
+    trip.emplace_back(i, i, 4.0);
+    if (i + 1 < n) {
+      trip.emplace_back(i, i + 1, -1.0);
+      trip.emplace_back(i + 1, i, -1.0);
+    }
+  }
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(trip.begin(), trip.end());
+  A.makeCompressed();
+  Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0);
+  solve::SparseSpdSolver s;
+  s.analyze(A);
+  ASSERT_TRUE(s.factorize(A));
+  const Eigen::VectorXd x = s.solve(b);
+  EXPECT_LT((A * x - b).norm(), 1e-10 * b.norm());
+  // Refactorize with new values on the same pattern.
+  Eigen::SparseMatrix<double> A2 = A * 2.0;
+  ASSERT_TRUE(s.factorize(A2));
+  EXPECT_LT((A2 * s.solve(b) - b).norm(), 1e-10 * b.norm());
+  // Indefinite: refused, and solving then throws.
+  Eigen::SparseMatrix<double> B = A;
+  B.coeffRef(3, 3) = -10.0;
+  EXPECT_FALSE(s.factorize(B));
+  EXPECT_THROW((void)s.solve(b), core::SolverError);
+}
+
+// --- untangling -------------------------------------------------------------------------------
+
+struct FoldedGrid {
+  core::TetMesh mesh;
+  std::vector<int> var;  // 3#V
+  int nvar = 0;
+};
+
+//! 3x3x3 grid split into tets; boundary vertices fixed; the interior vertex (1,1,1) pushed
+//! through the far side of its neighbourhood so that tets around it are inverted.
+FoldedGrid folded_grid() {
+  FoldedGrid g;
+  g.mesh = test::tetrahedralize(test::hex_grid(3, 3, 3));
+  const int nv = g.mesh.num_points();
+  g.var.assign(3 * nv, -1);
+  for (int v = 0; v < nv; ++v) {
+    const Vec3& p = g.mesh.points[v];
+    const bool bnd = (p.array() == 0.0).any() || (p.array() == 3.0).any();
+    if (!bnd)
+      for (int d = 0; d < 3; ++d) g.var[3 * v + d] = g.nvar++;
+  }
+  g.mesh.points[1 + 4 * (1 + 4 * 1)] = Vec3(2.7, 2.6, 2.8);  // vertex (1,1,1) beyond (2,2,2)
+  return g;
+}
+
+int inverted_count(const core::TetMesh& m, const std::vector<Vec3>& p) {
+  int n = 0;
+  for (const auto& t : m.cells)
+    n += (p[t[1]] - p[t[0]]).dot((p[t[2]] - p[t[0]]).cross(p[t[3]] - p[t[0]])) <= 0;
+  return n;
+}
+
+TEST(Untangle, FoldedVertexBecomesValidAndFixedCoordinatesStay) {
+  FoldedGrid g = folded_grid();
+  const core::TetMesh ref = test::tetrahedralize(test::hex_grid(3, 3, 3));
+  ASSERT_GT(inverted_count(g.mesh, g.mesh.points), 0);
+  const Eigen::VectorXd x_init = solve::flatten(g.mesh.points);
+  const solve::LinearReduction R = solve::index_reduction(g.var, g.nvar, x_init);
+  Eigen::VectorXd y(g.nvar);
+  for (int i = 0; i < 3 * g.mesh.num_points(); ++i)
+    if (g.var[i] >= 0) y[g.var[i]] = x_init[i];
+  const solve::TetElements el = solve::reference_elements(ref.points, ref.cells);
+  const solve::UntangleResult r = solve::untangle(el, R, y, {});
+  EXPECT_GT(r.inverted_before, 0);
+  EXPECT_TRUE(r.untangled);
+  EXPECT_EQ(r.inverted_after, 0);
+  EXPECT_GT(r.min_det, 0.0);
+  const Eigen::VectorXd x = R.apply(y);
+  const std::vector<Vec3> p = solve::unflatten(x);
+  EXPECT_EQ(inverted_count(g.mesh, p), 0);
+  for (int i = 0; i < x.size(); ++i) {
+    if (g.var[i] < 0) {
+      EXPECT_EQ(x[i], x_init[i]) << "fixed coordinate " << i << " moved";
+    }
+  }
+  // The optimum of this fixture is the undistorted grid: the vertices come back close to it.
+  double err = 0;
+  for (int v = 0; v < ref.num_points(); ++v) err = std::max(err, (p[v] - ref.points[v]).norm());
+  EXPECT_LT(err, 0.05);
+}
+
+TEST(Untangle, SharedVariableConstraintIsExact) {
+  // All interior vertices of the grid with z = 1 share one z variable (a "chart" constraint),
+  // and they start tangled.
+  FoldedGrid g = folded_grid();
+  const core::TetMesh ref = test::tetrahedralize(test::hex_grid(3, 3, 3));
+  const int nv = g.mesh.num_points();
+  const int shared = g.nvar++;
+  std::vector<int> members;
+  for (int v = 0; v < nv; ++v)
+    if (g.var[3 * v + 2] >= 0 && ref.points[v].z() == 1.0) {
+      g.var[3 * v + 2] = shared;
+      members.push_back(v);
+    }
+  ASSERT_GE(members.size(), 4u);
+  // Renumber variables densely.
+  std::vector<int> remap(g.nvar, -1);
+  int n = 0;
+  for (int& v : g.var)
+    if (v >= 0) {
+      if (remap[v] < 0) remap[v] = n++;
+      v = remap[v];
+    }
+  const Eigen::VectorXd x_init = solve::flatten(g.mesh.points);
+  const solve::LinearReduction R = solve::index_reduction(g.var, n, x_init);
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(n);
+  for (int i = 0; i < 3 * nv; ++i)
+    if (g.var[i] >= 0) y[g.var[i]] = x_init[i];
+  y[remap[shared]] = 1.3;
+  solve::UntangleOptions o;
+  o.attractions.push_back({0, Vec3(0, 0, 0), 1.0});  // a fixed vertex: attraction has no effect
+  const solve::UntangleResult r = solve::untangle(solve::reference_elements(ref.points, ref.cells), R, y, o);
+  EXPECT_TRUE(r.untangled);
+  const std::vector<Vec3> p = solve::unflatten(R.apply(y));
+  EXPECT_EQ(inverted_count(g.mesh, p), 0);
+  for (int v : members) EXPECT_EQ(p[v].z(), p[members.front()].z());
+  EXPECT_NEAR(p[members.front()].z(), 1.0, 0.05);
+}
+
+TEST(Untangle, AttractionPullsFreeVertex) {
+  // One tet, all vertices free but vertex 0..2 attracted strongly to translated targets:
+  // the tet follows while staying positive.
+  const std::vector<Vec3> ref{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const std::vector<std::array<int, 4>> tets{{0, 1, 2, 3}};
+  const solve::LinearReduction R = solve::identity_reduction(4);
+  Eigen::VectorXd y = solve::flatten(ref);
+  solve::UntangleOptions o;
+  for (int v = 0; v < 3; ++v) o.attractions.push_back({v, ref[v] + Vec3(5, 0, 0), 100.0});
+  const auto r = solve::untangle(solve::reference_elements(ref, tets), R, y, o);
+  EXPECT_TRUE(r.untangled);
+  const auto p = solve::unflatten(y);
+  for (int v = 0; v < 3; ++v) EXPECT_NEAR((p[v] - ref[v] - Vec3(5, 0, 0)).norm(), 0.0, 1e-2);
+}
+
+}  // namespace
+}  // namespace polycube
