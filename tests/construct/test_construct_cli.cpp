@@ -10,6 +10,7 @@
 #include "structure/validate.h"
 
 #include "cli/run_cli.h"
+#include "cli/surface_file.h"
 #include "construct/shapes.h"
 
 #include <Eigen/Geometry>
@@ -39,12 +40,7 @@ fs::path temp_dir(const std::string& name) {
   return d;
 }
 
-void write_surface(const fs::path& p, const core::TriMesh& m) {
-  core::MeshData d;
-  d.points = m.points;
-  d.triangles = m.cells;
-  io::write_mesh(p, d);
-}
+using test::write_surface;
 
 //! `polycube construct IN -o OUT <more>` with quoted paths.
 CliResult construct(const fs::path& in, const fs::path& out, const std::string& more = "") {

@@ -5,6 +5,8 @@
 #include "construct/shapes.h"
 #include "construct/validator.h"
 
+#include "cli/surface_file.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <sys/wait.h>
@@ -46,12 +48,7 @@ CliRun run_label(const fs::path& input, const fs::path& out) {
   return r;
 }
 
-void write_surface(const fs::path& p, const core::TriMesh& m) {
-  core::MeshData d;
-  d.points = m.points;
-  d.triangles = m.cells;
-  io::write_mesh(p, d);
-}
+using test::write_surface;
 
 TEST(LabelCli, CubeWritesConsistentOutputs) {
   const fs::path dir = temp_dir("cube");

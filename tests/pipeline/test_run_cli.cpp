@@ -12,6 +12,7 @@
 #include "structure/validate.h"
 
 #include "cli/run_cli.h"
+#include "cli/surface_file.h"
 #include "construct/shapes.h"
 
 #include <gtest/gtest.h>
@@ -64,12 +65,7 @@ CliResult run(const fs::path& in, const fs::path& out, const std::string& more) 
   return run(args);
 }
 
-void write_surface(const fs::path& p, const core::TriMesh& m) {
-  core::MeshData d;
-  d.points = m.points;
-  d.triangles = m.cells;
-  io::write_mesh(p, d);
-}
+using test::write_surface;
 
 nlohmann::json read_report(const fs::path& out) { return nlohmann::json::parse(slurp(out / "report.json")); }
 
