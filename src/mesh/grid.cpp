@@ -316,18 +316,24 @@ bool in_polygon(const std::vector<std::vector<std::array<double, 2>>>& loops, do
   return odd;
 }
 
-std::vector<SnapDefect> detect_defects(const SnapContext& c) {
-  const auto& s = c.s;
-  std::vector<SnapDefect> out;
-  std::vector<Vec3> snapped(s.corners.size());
-  for (std::size_t i = 0; i < s.corners.size(); ++i)
-    snapped[i] = snap_point(c, s.corners[i].position);
-  auto scaled = [&](int corner) -> Vec3 {
-    return s.corners[static_cast<std::size_t>(corner)].position * c.scale;
-  };
+//! The corners of the polycube at their snapped (lattice) positions, shared by the defect tests.
+struct SnappedCorners {
+  const SnapContext& c;
+  std::vector<Vec3> snapped;  //!< #corners lattice position of each corner
 
-  // 1. corners merged into one lattice point
-  std::vector<int> order(s.corners.size());
+  explicit SnappedCorners(const SnapContext& context) : c(context), snapped(context.s.corners.size()) {
+    for (std::size_t i = 0; i < c.s.corners.size(); ++i) snapped[i] = snap_point(c, c.s.corners[i].position);
+  }
+  //! Scaled polycube position of a corner (before snapping).
+  [[nodiscard]] Vec3 scaled(int corner) const {
+    return c.s.corners[static_cast<std::size_t>(corner)].position * c.scale;
+  }
+};
+
+//! Defects of corners merged into one lattice point.
+void merged_corners(const SnappedCorners& sc, std::vector<SnapDefect>& out) {
+  const auto& snapped = sc.snapped;
+  std::vector<int> order(sc.c.s.corners.size());
   std::iota(order.begin(), order.end(), 0);
   auto key = [&](int i) {
     return std::array<double, 3>{snapped[i].x(), snapped[i].y(), snapped[i].z()};
@@ -346,8 +352,8 @@ std::vector<SnapDefect> detect_defects(const SnapContext& c) {
         std::sort(d.corners.begin(), d.corners.end());
       }
       for (int cid : d.corners) {
-        d.positions.push_back(scaled(cid));
-        names += (names.empty() ? "" : ", ") + fmt::format("{} {}", cid, fmt_point(scaled(cid)));
+        d.positions.push_back(sc.scaled(cid));
+        names += (names.empty() ? "" : ", ") + fmt::format("{} {}", cid, fmt_point(sc.scaled(cid)));
       }
       d.description =
           fmt::format("corners {} merge at lattice point {}", names, fmt_point(d.lattice));
@@ -355,7 +361,12 @@ std::vector<SnapDefect> detect_defects(const SnapContext& c) {
     }
     i = j;
   }
-  // 2. polycube edges collapsed to zero length
+}
+
+//! Defects of polycube edges collapsed to zero length.
+void collapsed_edges(const SnappedCorners& sc, std::vector<SnapDefect>& out) {
+  const auto& s = sc.c.s;
+  const auto& snapped = sc.snapped;
   for (std::size_t e = 0; e < s.edges.size(); ++e) {
     const auto& pe = s.edges[e];
     if (pe.corners[0] < 0 || pe.corners[1] < 0) continue;
@@ -364,15 +375,24 @@ std::vector<SnapDefect> detect_defects(const SnapContext& c) {
     d.kind = DefectKind::EdgeCollapsed;
     d.edge = static_cast<int>(e);
     d.corners = {pe.corners[0], pe.corners[1]};
-    d.positions = {scaled(pe.corners[0]), scaled(pe.corners[1])};
+    d.positions = {sc.scaled(pe.corners[0]), sc.scaled(pe.corners[1])};
     d.lattice = snapped[pe.corners[0]];
     d.description = fmt::format(
         "edge {} (corners {}-{}, along {}, length {:.6g}) collapses to zero length", e,
-        pe.corners[0], pe.corners[1], pe.axis >= 0 ? kAxis[pe.axis] : "?", pe.length * c.scale);
+        pe.corners[0], pe.corners[1], pe.axis >= 0 ? kAxis[pe.axis] : "?", pe.length * sc.c.scale);
     out.push_back(std::move(d));
   }
-  // 3. charts collapsed to zero area, and 4. corners pushed onto charts they do not belong to
-  std::vector<std::vector<std::vector<std::array<double, 2>>>> polys(s.charts.size());
+}
+
+//! Loops of 2D points (in the chart's plane) of every chart, per chart.
+using ChartPolygons = std::vector<std::vector<std::vector<std::array<double, 2>>>>;
+
+//! Defects of charts collapsed to zero area. Returns the snapped polygon of every chart (empty
+//! for a chart with a loop of fewer than 3 corners), which the corner-on-facet test needs too.
+ChartPolygons collapsed_charts(const SnappedCorners& sc, std::vector<SnapDefect>& out) {
+  const auto& s = sc.c.s;
+  const auto& snapped = sc.snapped;
+  ChartPolygons polys(s.charts.size());
   for (std::size_t ci = 0; ci < s.charts.size(); ++ci) {
     const auto& ch = s.charts[ci];
     const int u = (ch.axis + 1) % 3;
@@ -403,22 +423,29 @@ std::vector<SnapDefect> detect_defects(const SnapContext& c) {
       d.chart = static_cast<int>(ci);
       for (int cid : s.faces[ci].loops[0].corners) {
         d.corners.push_back(cid);
-        d.positions.push_back(scaled(cid));
+        d.positions.push_back(sc.scaled(cid));
       }
       d.lattice = snapped[s.faces[ci].loops[0].corners[0]];
       d.description =
           fmt::format("chart {} ({} at {} = {:.6g}, area {:.6g}) collapses to zero area", ci,
-                      core::label_name(ch.label), kAxis[ch.axis], ch.coordinate * c.scale,
-                      ch.area * c.scale * c.scale);
+                      core::label_name(ch.label), kAxis[ch.axis], ch.coordinate * sc.c.scale,
+                      ch.area * sc.c.scale * sc.c.scale);
       out.push_back(std::move(d));
     }
   }
-  // charts by (axis, snapped level) for the corner-on-facet test
+  return polys;
+}
+
+//! Defects of corners pushed onto (the inside or border of) charts they do not belong to.
+void corners_on_facets(const SnappedCorners& sc, const ChartPolygons& polys, std::vector<SnapDefect>& out) {
+  const auto& s = sc.c.s;
+  const auto& snapped = sc.snapped;
+  // charts by (axis, snapped level)
   std::map<std::pair<int, long long>, std::vector<int>> by_plane;
   for (std::size_t ci = 0; ci < s.charts.size(); ++ci) {
-    const int l = c.arr.chart_level[ci];
+    const int l = sc.c.arr.chart_level[ci];
     if (l >= 0 && !polys[ci].empty())
-      by_plane[{s.charts[ci].axis, c.sn[s.charts[ci].axis][l]}].push_back(static_cast<int>(ci));
+      by_plane[{s.charts[ci].axis, sc.c.sn[s.charts[ci].axis][l]}].push_back(static_cast<int>(ci));
   }
   for (std::size_t cid = 0; cid < s.corners.size(); ++cid) {
     const Vec3& q = snapped[cid];
@@ -441,16 +468,27 @@ std::vector<SnapDefect> detect_defects(const SnapContext& c) {
         d.kind = DefectKind::CornerOnFacet;
         d.chart = ci;
         d.corners = {static_cast<int>(cid)};
-        d.positions = {scaled(static_cast<int>(cid))};
+        d.positions = {sc.scaled(static_cast<int>(cid))};
         d.lattice = q;
         d.description = fmt::format(
             "corner {} {} is pushed onto chart {} ({} at {} = {:.6g}) at lattice point {}", cid,
-            fmt_point(scaled(static_cast<int>(cid))), ci, core::label_name(ch.label), kAxis[a],
-            ch.coordinate * c.scale, fmt_point(q));
+            fmt_point(sc.scaled(static_cast<int>(cid))), ci, core::label_name(ch.label), kAxis[a],
+            ch.coordinate * sc.c.scale, fmt_point(q));
         out.push_back(std::move(d));
       }
     }
   }
+}
+
+//! The topological defects of snapping the corners (thesis fig. 3.2), in this order: corners
+//! merged, edges collapsed, charts collapsed, corners pushed onto facets.
+std::vector<SnapDefect> detect_defects(const SnapContext& c) {
+  const SnappedCorners sc(c);
+  std::vector<SnapDefect> out;
+  merged_corners(sc, out);
+  collapsed_edges(sc, out);
+  const ChartPolygons polys = collapsed_charts(sc, out);
+  corners_on_facets(sc, polys, out);
   return out;
 }
 
@@ -546,6 +584,286 @@ int count_inverted_hexes(const core::HexMesh& m) {
   return n;
 }
 
+
+// --- the steps of grid_polycube ---------------------------------------------------------------
+
+void check_options(const core::PolycubeMap& map, const GridOptions& options) {
+  core::check_map_indices(map);
+  if (!(options.scale >= 0.0) || !std::isfinite(options.scale))
+    throw core::InputError(fmt::format("scale must be a positive number (got {})", options.scale));
+  if (options.target_hexes < 0 || options.target_quads < 0)
+    throw core::InputError("the target number of hexes or quads must be positive");
+  if (!(options.tolerance >= 0.0)) throw core::InputError("the tolerance must be >= 0");
+}
+
+//! The integer lattice coordinate of every level and the scale that gives them.
+struct Levels {
+  bool by_map = false;                       //!< GridSizing::Map: per-interval cell counts
+  double scale = 1.0;                        //!< GridSizing::Map: cells per model length
+  std::array<std::vector<long long>, 3> sn;  //!< integer of each level, per axis
+};
+
+//! The scale (and, with Map sizing, the cells of every interval) and the levels' integers.
+Levels choose_levels(const core::PolycubeMap& map, const Arrangement& arr, const GridOptions& options,
+                     double tol) {
+  Levels lv;
+  lv.by_map = options.sizing == GridSizing::Map;
+  const bool by_map = lv.by_map;
+  std::array<std::vector<double>, 3> stretch;
+  if (by_map) stretch = slab_stretch(map, arr);
+  auto levels_at = [&](double sc) { return by_map ? map_levels(arr, stretch, sc) : snapped_levels(arr, sc); };
+  double scale = 1.0;
+  if (options.scale > 0.0)
+    scale = options.scale;
+  else if (options.target_hexes > 0)
+    scale = choose_scale(arr, 0, options.target_hexes, by_map ? &stretch : nullptr, levels_at);
+  else if (options.target_quads > 0)
+    scale = choose_scale(arr, 1, options.target_quads, by_map ? &stretch : nullptr, levels_at);
+  // An integer polycube (simplified) keeps every plane distinct and every alignment at any scale
+  // >= 1 (rounding is monotone and round(x + 1) = round(x) + 1): never go below 1 for it.
+  if (!by_map && options.scale <= 0.0 && (options.target_hexes > 0 || options.target_quads > 0) &&
+      integer_levels(arr, tol))
+    scale = std::max(scale, 1.0);
+  lv.scale = scale;
+  lv.sn = levels_at(scale);
+  core::logger().info("gridding: {} {:.6g}, {} x {} x {} chart planes", by_map ? "cells per model length" : "scale",
+                      scale, arr.level[0].size(), arr.level[1].size(), arr.level[2].size());
+  return lv;
+}
+
+//! How far snapping moves the levels and corners and whether some levels collapse (the defects
+//! are left to detect_defects). With Map sizing none do: the per-interval counts place every
+//! level, the polycube is not scaled but mapped per axis.
+SnapReport snap_report(const SnapContext& ctx, bool by_map, double tol_lattice) {
+  const Arrangement& arr = ctx.arr;
+  const auto& sn = ctx.sn;
+  const double scale = ctx.scale;
+  SnapReport rep;
+  for (int a = 0; a < 3; ++a) {
+    rep.levels[a] = static_cast<int>(arr.level[a].size());
+    for (std::size_t i = 0; i < sn[a].size() && !by_map; ++i) {
+      rep.max_displacement = std::max(
+          rep.max_displacement, std::abs(static_cast<double>(sn[a][i]) - arr.level[a][i] * scale));
+      if (i > 0 && sn[a][i] <= sn[a][i - 1]) ++rep.collapsed_levels;
+    }
+  }
+  rep.needed = rep.max_displacement > tol_lattice;
+  for (const auto& c : ctx.s.corners)
+    if (!by_map && (snap_point(ctx, c.position) - c.position * scale).cwiseAbs().maxCoeff() > tol_lattice)
+      ++rep.corners_moved;
+  rep.deformed = rep.collapsed_levels > 0;
+  return rep;
+}
+
+//! The lattice: the integer cells inside the snapped arrangement boxes, as hexes.
+struct Lattice {
+  std::array<long long, 3> lo{};           //!< integer of the lowest level, per axis
+  std::array<long long, 3> n{};            //!< cells of the bounding box, per axis
+  std::vector<std::array<int, 3>> points;  //!< the hexes' lattice points, relative to lo
+  core::HexMesh hexes;                     //!< lattice positions (points in the order of `points`)
+};
+
+//! Arrangement interval of every lattice cell, per axis.
+std::array<std::vector<int>, 3> cell_boxes(const std::array<std::vector<long long>, 3>& sn, const Lattice& lat) {
+  std::array<std::vector<int>, 3> cell_box;
+  for (int a = 0; a < 3; ++a) {
+    cell_box[a].assign(static_cast<std::size_t>(lat.n[a]), -1);
+    for (std::size_t i = 0; i + 1 < sn[a].size(); ++i)
+      for (long long c = sn[a][i]; c < sn[a][i + 1]; ++c)
+        cell_box[a][static_cast<std::size_t>(c - lat.lo[a])] = static_cast<int>(i);
+  }
+  return cell_box;
+}
+
+Lattice build_lattice(const Arrangement& arr, const Levels& lv, long long max_lattice_points) {
+  const auto& sn = lv.sn;
+  Lattice lat;
+  const auto& lo = lat.lo;
+  const auto& n = lat.n;
+  for (int a = 0; a < 3; ++a) {
+    lat.lo[a] = sn[a].front();
+    lat.n[a] = sn[a].back() - sn[a].front();
+  }
+  const long long npoints_box = (n[0] + 1) * (n[1] + 1) * (n[2] + 1);
+  if (npoints_box > max_lattice_points || npoints_box > INT_MAX)
+    throw core::InputError(fmt::format(
+        "the lattice at scale {:.6g} has {} x {} x {} cells: too large (choose a smaller "
+        "scale or fewer hexes)",
+        lv.scale, n[0], n[1], n[2]));
+  const std::array<std::vector<int>, 3> cell_box = cell_boxes(sn, lat);
+  const int nx = static_cast<int>(n[0]);
+  const int ny = static_cast<int>(n[1]);
+  const int nz = static_cast<int>(n[2]);
+  auto pidx = [&](int i, int j, int k) {
+    return (static_cast<std::size_t>(k) * (ny + 1) + j) * (nx + 1) + i;
+  };
+  std::vector<int> point_id(static_cast<std::size_t>(npoints_box), -1);
+  std::vector<std::array<int, 3>> cells;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        if (arr.is_inside(cell_box[0][i], cell_box[1][j], cell_box[2][k])) {
+          cells.push_back({i, j, k});
+          for (int c = 0; c < 8; ++c)
+            point_id[pidx(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1))] = 0;
+        }
+  if (cells.empty())
+    throw core::GeometryError(
+        fmt::format("no lattice cell lies inside the polycube at scale {:.6g}", lv.scale));
+  std::vector<std::array<int, 3>>& lattice_points = lat.points;
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i)
+        if (point_id[pidx(i, j, k)] == 0) {
+          point_id[pidx(i, j, k)] = static_cast<int>(lattice_points.size());
+          lattice_points.push_back({i, j, k});
+        }
+  // hexes in the order of elements.h: 0-1-2-3 bottom ring ccw from above, 4-7 above
+  constexpr std::array<std::array<int, 3>, 8> kCorner{
+      {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}};
+  core::HexMesh& hp = lat.hexes;
+  hp.cells.reserve(cells.size());
+  for (const auto& c : cells) {
+    core::Hex h{};
+    for (int v = 0; v < 8; ++v)
+      h[v] = point_id[pidx(c[0] + kCorner[v][0], c[1] + kCorner[v][1], c[2] + kCorner[v][2])];
+    hp.cells.push_back(h);
+  }
+  hp.points.reserve(lattice_points.size());
+  for (const auto& p : lattice_points)
+    hp.points.emplace_back(static_cast<double>(p[0] + lo[0]), static_cast<double>(p[1] + lo[1]),
+                           static_cast<double>(p[2] + lo[2]));
+  return lat;
+}
+
+//! Where the lattice points are located and how their positions there are found.
+struct LocationSpace {
+  //! Levels collapsed: the lattice points are located in the snapped polycube at their lattice
+  //! positions; else in the polycube through the inverse of the per-axis snapping map.
+  bool deformed = false;
+  double scale = 1.0;                          //!< lattice units per polycube unit
+  double tolerance = 0.0;                      //!< of the snapped polycube's locator (lattice units)
+  std::vector<Vec3> snapped;                   //!< deformed: #V snapped polycube positions
+  std::array<std::vector<double>, 3> inverse;  //!< else: lattice coordinate -> polycube coordinate
+};
+
+//! Levels collapsed: the snapping defects (into rep.defects) and the snapped polycube.
+std::vector<Vec3> deform_and_detect(const core::PolycubeMap& map, const SnapContext& ctx, SnapReport& rep) {
+  rep.defects = detect_defects(ctx);
+  std::vector<Vec3> deformed = deform_to_snapped(map, ctx.s, ctx.arr, ctx.sn, ctx.scale);
+  const std::vector<int> bad = degenerate_tets(map.tets, deformed);
+  if (!bad.empty()) {
+    SnapDefect d;
+    d.kind = DefectKind::TetsDegenerated;
+    d.count = static_cast<int>(bad.size());
+    d.description = fmt::format(
+        "the snapped polycube has {} flat or inverted tets (first: tet {})", bad.size(), bad[0]);
+    rep.defects.push_back(std::move(d));
+  }
+  core::logger().warn("snapping at scale {:.6g} collapses {} coordinate level(s): {}", ctx.scale,
+                      rep.collapsed_levels, rep.summary());
+  return deformed;
+}
+
+//! Inverse of the per-axis snapping map, lattice coordinate (relative to lat.lo) -> polycube
+//! coordinate: exact when no level collapses, every interval maps linearly onto its cells.
+std::array<std::vector<double>, 3> inverse_snapping(const Arrangement& arr,
+                                                    const std::array<std::vector<long long>, 3>& sn,
+                                                    const Lattice& lat) {
+  std::array<std::vector<double>, 3> inverse;
+  for (int a = 0; a < 3; ++a) {
+    inverse[a].resize(static_cast<std::size_t>(lat.n[a] + 1));
+    for (std::size_t i = 0; i + 1 < sn[a].size(); ++i) {
+      const double l0 = arr.level[a][i];
+      const double l1 = arr.level[a][i + 1];
+      const double len = static_cast<double>(sn[a][i + 1] - sn[a][i]);
+      for (long long c = sn[a][i]; c <= sn[a][i + 1]; ++c) {
+        const double t = static_cast<double>(c - sn[a][i]) / len;
+        inverse[a][static_cast<std::size_t>(c - lat.lo[a])] =
+            c == sn[a][i + 1] ? l1 : l0 + t * (l1 - l0);
+      }
+    }
+  }
+  return inverse;
+}
+
+//! Every lattice point, or only the boundary ones (quad meshes only).
+std::vector<int> points_to_locate(const core::HexBoundary& hb, std::size_t num_points, bool volume) {
+  std::vector<int> to_locate;
+  if (volume) {
+    to_locate.resize(num_points);
+    std::iota(to_locate.begin(), to_locate.end(), 0);
+  } else {
+    to_locate = hb.vertex_map;
+  }
+  return to_locate;
+}
+
+//! Model positions of the lattice points to_locate (NaN for the others): each is located in a
+//! tet of the (snapped) polycube and mapped with its barycentric coordinates. Counts the points
+//! located and failed into res.
+std::vector<Vec3> map_lattice_points(const core::PolycubeMap& map, const TetLocator& base_locator,
+                                     const LocationSpace& space, const Lattice& lat,
+                                     const std::vector<int>& to_locate, GridResult& res) {
+  std::vector<Vec3> model_pos(lat.points.size(), Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
+  const TetLocator* locator = &base_locator;
+  std::unique_ptr<TetLocator> deformed_locator;
+  if (space.deformed) {
+    deformed_locator = std::make_unique<TetLocator>(map.tets, space.snapped, space.tolerance);
+    locator = deformed_locator.get();
+  }
+  core::ProgressTask task("map lattice points", static_cast<std::int64_t>(to_locate.size()));
+  std::size_t done = 0;
+  for (int pid : to_locate) {
+    const auto& lp = lat.points[static_cast<std::size_t>(pid)];
+    Vec3 q;
+    if (space.deformed)
+      q = lat.hexes.points[static_cast<std::size_t>(pid)];
+    else
+      q = Vec3(space.inverse[0][lp[0]], space.inverse[1][lp[1]], space.inverse[2][lp[2]]);
+    TetLocator::Hit hit = locator->locate(q);
+    if (hit.tet >= 0) {
+      ++res.points_located;
+    } else {
+      hit = locator->nearest(q, 2);
+      if (hit.tet < 0) hit = locator->nearest_brute_force(q);
+      ++res.points_failed;
+      res.max_failed_distance =
+          std::max(res.max_failed_distance, -hit.score / (space.deformed ? space.scale : 1.0));
+    }
+    if (hit.tet < 0) throw core::GeometryError("gridding: the polycube has no usable tet");
+    // clamp to the tet (points on the boundary may be outside by rounding) and map
+    std::array<double, 4> b = hit.bary;
+    double sum = 0.0;
+    for (double& x : b) sum += (x = std::max(0.0, x));
+    const auto& t = map.tets[static_cast<std::size_t>(hit.tet)];
+    Vec3 p = Vec3::Zero();
+    for (int k = 0; k < 4; ++k) p += (b[k] / sum) * map.model[t[k]];
+    model_pos[static_cast<std::size_t>(pid)] = p;
+    if ((++done & 0xFFFF) == 0) task.set(static_cast<std::int64_t>(done));
+  }
+  task.finish();
+  return model_pos;
+}
+
+//! The result meshes: the lattice hexes, their boundary quads, both in lattice and model space.
+void assemble_meshes(GridResult& res, core::HexMesh hexes, const core::HexBoundary& hb,
+                     const std::vector<Vec3>& model_pos, bool volume) {
+  res.hex_polycube = std::move(hexes);
+  if (volume) {
+    res.hex_model.cells = res.hex_polycube.cells;
+    res.hex_model.points = model_pos;
+    res.inverted_model_hexes = count_inverted_hexes(res.hex_model);
+  }
+  res.quad_polycube = hb.surface;
+  res.quad_model.cells = hb.surface.cells;
+  res.quad_model.points.reserve(hb.vertex_map.size());
+  for (int v : hb.vertex_map)
+    res.quad_model.points.push_back(model_pos[static_cast<std::size_t>(v)]);
+  res.quad_polycube.labels.clear();
+  res.quad_model.labels.clear();
+}
+
 }  // namespace
 
 const char* defect_name(DefectKind k) {
@@ -587,12 +905,7 @@ std::string SnapReport::summary(int max_items) const {
 
 GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& options) {
   const auto t_start = Clock::now();
-  core::check_map_indices(map);
-  if (!(options.scale >= 0.0) || !std::isfinite(options.scale))
-    throw core::InputError(fmt::format("scale must be a positive number (got {})", options.scale));
-  if (options.target_hexes < 0 || options.target_quads < 0)
-    throw core::InputError("the target number of hexes or quads must be positive");
-  if (!(options.tolerance >= 0.0)) throw core::InputError("the tolerance must be >= 0");
+  check_options(map, options);
 
   GridResult res;
   const structure::PolycubeStructure s = structure::extract_structure(map);
@@ -603,204 +916,43 @@ GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& option
   core::logger().debug("gridding: structure, locator and arrangement {:.3f} s",
                        seconds_since(t_start));
 
-  // 1. the scale (and, with Map sizing, the cells of every interval)
-  const bool by_map = options.sizing == GridSizing::Map;
-  std::array<std::vector<double>, 3> stretch;
-  if (by_map) stretch = slab_stretch(map, arr);
-  auto levels_at = [&](double sc) { return by_map ? map_levels(arr, stretch, sc) : snapped_levels(arr, sc); };
-  double scale = 1.0;
-  if (options.scale > 0.0)
-    scale = options.scale;
-  else if (options.target_hexes > 0)
-    scale = choose_scale(arr, 0, options.target_hexes, by_map ? &stretch : nullptr, levels_at);
-  else if (options.target_quads > 0)
-    scale = choose_scale(arr, 1, options.target_quads, by_map ? &stretch : nullptr, levels_at);
-  // An integer polycube (simplified) keeps every plane distinct and every alignment at any scale
-  // >= 1 (rounding is monotone and round(x + 1) = round(x) + 1): never go below 1 for it.
-  if (!by_map && options.scale <= 0.0 && (options.target_hexes > 0 || options.target_quads > 0) &&
-      integer_levels(arr, tol))
-    scale = std::max(scale, 1.0);
-  res.scale = scale;
-  const auto sn = levels_at(scale);
-  core::logger().info("gridding: {} {:.6g}, {} x {} x {} chart planes", by_map ? "cells per model length" : "scale",
-                      scale, arr.level[0].size(), arr.level[1].size(), arr.level[2].size());
+  // 1. the scale and the integer of every level
+  const Levels lv = choose_levels(map, arr, options, tol);
+  res.scale = lv.scale;
 
-  // 2. snapping: how far the levels move, whether some collapse (Map sizing: none do; the
-  // per-interval counts place every level, the polycube is not scaled but mapped per axis)
+  // 2. snapping: how far the levels move, whether some collapse
+  const SnapContext ctx{s, arr, lv.sn, lv.scale};
+  const double tol_lattice = tol * lv.scale;
+  res.snapping = snap_report(ctx, lv.by_map, tol_lattice);
   SnapReport& rep = res.snapping;
-  const double tol_lattice = tol * scale;
-  for (int a = 0; a < 3; ++a) {
-    rep.levels[a] = static_cast<int>(arr.level[a].size());
-    for (std::size_t i = 0; i < sn[a].size() && !by_map; ++i) {
-      rep.max_displacement = std::max(
-          rep.max_displacement, std::abs(static_cast<double>(sn[a][i]) - arr.level[a][i] * scale));
-      if (i > 0 && sn[a][i] <= sn[a][i - 1]) ++rep.collapsed_levels;
-    }
-  }
-  rep.needed = rep.max_displacement > tol_lattice;
-  const SnapContext ctx{s, arr, sn, scale};
-  for (const auto& c : s.corners)
-    if (!by_map && (snap_point(ctx, c.position) - c.position * scale).cwiseAbs().maxCoeff() > tol_lattice)
-      ++rep.corners_moved;
-  rep.deformed = rep.collapsed_levels > 0;
 
   // 3. the lattice: integer cells inside the snapped arrangement boxes
-  std::array<long long, 3> lo{};
-  std::array<long long, 3> n{};
   for (int a = 0; a < 3; ++a) {
-    lo[a] = sn[a].front();
-    n[a] = sn[a].back() - sn[a].front();
-    res.lattice_min[a] = static_cast<int>(sn[a].front());
-    res.lattice_max[a] = static_cast<int>(sn[a].back());
+    res.lattice_min[a] = static_cast<int>(lv.sn[a].front());
+    res.lattice_max[a] = static_cast<int>(lv.sn[a].back());
   }
-  const long long npoints_box = (n[0] + 1) * (n[1] + 1) * (n[2] + 1);
-  if (npoints_box > options.max_lattice_points || npoints_box > INT_MAX)
-    throw core::InputError(fmt::format(
-        "the lattice at scale {:.6g} has {} x {} x {} cells: too large (choose a smaller "
-        "scale or fewer hexes)",
-        scale, n[0], n[1], n[2]));
-  std::array<std::vector<int>, 3> cell_box;  // arrangement interval of each lattice cell
-  for (int a = 0; a < 3; ++a) {
-    cell_box[a].assign(static_cast<std::size_t>(n[a]), -1);
-    for (std::size_t i = 0; i + 1 < sn[a].size(); ++i)
-      for (long long c = sn[a][i]; c < sn[a][i + 1]; ++c)
-        cell_box[a][static_cast<std::size_t>(c - lo[a])] = static_cast<int>(i);
-  }
-  const int nx = static_cast<int>(n[0]);
-  const int ny = static_cast<int>(n[1]);
-  const int nz = static_cast<int>(n[2]);
-  auto pidx = [&](int i, int j, int k) {
-    return (static_cast<std::size_t>(k) * (ny + 1) + j) * (nx + 1) + i;
-  };
-  std::vector<int> point_id(static_cast<std::size_t>(npoints_box), -1);
-  std::vector<std::array<int, 3>> cells;
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i)
-        if (arr.is_inside(cell_box[0][i], cell_box[1][j], cell_box[2][k])) {
-          cells.push_back({i, j, k});
-          for (int c = 0; c < 8; ++c)
-            point_id[pidx(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1))] = 0;
-        }
-  if (cells.empty())
-    throw core::GeometryError(
-        fmt::format("no lattice cell lies inside the polycube at scale {:.6g}", scale));
-  std::vector<std::array<int, 3>> lattice_points;
-  for (int k = 0; k <= nz; ++k)
-    for (int j = 0; j <= ny; ++j)
-      for (int i = 0; i <= nx; ++i)
-        if (point_id[pidx(i, j, k)] == 0) {
-          point_id[pidx(i, j, k)] = static_cast<int>(lattice_points.size());
-          lattice_points.push_back({i, j, k});
-        }
-  // hexes in the order of elements.h: 0-1-2-3 bottom ring ccw from above, 4-7 above
-  constexpr std::array<std::array<int, 3>, 8> kCorner{
-      {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}};
-  core::HexMesh& hp = res.hex_polycube;
-  hp.cells.reserve(cells.size());
-  for (const auto& c : cells) {
-    core::Hex h{};
-    for (int v = 0; v < 8; ++v)
-      h[v] = point_id[pidx(c[0] + kCorner[v][0], c[1] + kCorner[v][1], c[2] + kCorner[v][2])];
-    hp.cells.push_back(h);
-  }
-  hp.points.reserve(lattice_points.size());
-  for (const auto& p : lattice_points)
-    hp.points.emplace_back(static_cast<double>(p[0] + lo[0]), static_cast<double>(p[1] + lo[1]),
-                           static_cast<double>(p[2] + lo[2]));
-  point_id.clear();
-  point_id.shrink_to_fit();
+  Lattice lat = build_lattice(arr, lv, options.max_lattice_points);
 
   // 4. defects (only possible when levels collapse) and the space the points are located in
-  std::vector<Vec3> deformed;
-  if (rep.deformed) {
-    rep.defects = detect_defects(ctx);
-    deformed = deform_to_snapped(map, s, arr, sn, scale);
-    const std::vector<int> bad = degenerate_tets(map.tets, deformed);
-    if (!bad.empty()) {
-      SnapDefect d;
-      d.kind = DefectKind::TetsDegenerated;
-      d.count = static_cast<int>(bad.size());
-      d.description = fmt::format(
-          "the snapped polycube has {} flat or inverted tets (first: tet {})", bad.size(), bad[0]);
-      rep.defects.push_back(std::move(d));
-    }
-    core::logger().warn("snapping at scale {:.6g} collapses {} coordinate level(s): {}", scale,
-                        rep.collapsed_levels, rep.summary());
-  }
-  // inverse of the per-axis snapping map, lattice coordinate -> polycube coordinate (exact path)
-  std::array<std::vector<double>, 3> inverse;
-  if (!rep.deformed)
-    for (int a = 0; a < 3; ++a) {
-      inverse[a].resize(static_cast<std::size_t>(n[a] + 1));
-      for (std::size_t i = 0; i + 1 < sn[a].size(); ++i) {
-        const double l0 = arr.level[a][i];
-        const double l1 = arr.level[a][i + 1];
-        const double len = static_cast<double>(sn[a][i + 1] - sn[a][i]);
-        for (long long c = sn[a][i]; c <= sn[a][i + 1]; ++c) {
-          const double t = static_cast<double>(c - sn[a][i]) / len;
-          inverse[a][static_cast<std::size_t>(c - lo[a])] =
-              c == sn[a][i + 1] ? l1 : l0 + t * (l1 - l0);
-        }
-      }
-    }
-
-  core::logger().debug("gridding: lattice of {} hexes {:.3f} s", hp.cells.size(),
+  LocationSpace space;
+  space.deformed = rep.deformed;
+  space.scale = lv.scale;
+  space.tolerance = tol_lattice;
+  if (rep.deformed)
+    space.snapped = deform_and_detect(map, ctx, rep);
+  else
+    space.inverse = inverse_snapping(arr, lv.sn, lat);
+  core::logger().debug("gridding: lattice of {} hexes {:.3f} s", lat.hexes.cells.size(),
                        seconds_since(t_start));
+
   // 5. which points to locate
-  const core::HexBoundary hb = core::boundary(hp);
+  const core::HexBoundary hb = core::boundary(lat.hexes);
   core::logger().debug("gridding: boundary {:.3f} s", seconds_since(t_start));
-  std::vector<int> to_locate;
-  if (options.volume) {
-    to_locate.resize(lattice_points.size());
-    std::iota(to_locate.begin(), to_locate.end(), 0);
-  } else {
-    to_locate = hb.vertex_map;
-  }
+  const std::vector<int> to_locate = points_to_locate(hb, lat.points.size(), options.volume);
 
   // 6. locate and map
   const auto t_locate = Clock::now();
-  std::vector<Vec3> model_pos(lattice_points.size(),
-                              Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
-  {
-    const TetLocator* locator = &base_locator;
-    std::unique_ptr<TetLocator> deformed_locator;
-    if (rep.deformed) {
-      deformed_locator = std::make_unique<TetLocator>(map.tets, deformed, tol_lattice);
-      locator = deformed_locator.get();
-    }
-    core::ProgressTask task("map lattice points", static_cast<std::int64_t>(to_locate.size()));
-    std::size_t done = 0;
-    for (int pid : to_locate) {
-      const auto& lp = lattice_points[static_cast<std::size_t>(pid)];
-      Vec3 q;
-      if (rep.deformed)
-        q = hp.points[static_cast<std::size_t>(pid)];
-      else
-        q = Vec3(inverse[0][lp[0]], inverse[1][lp[1]], inverse[2][lp[2]]);
-      TetLocator::Hit hit = locator->locate(q);
-      if (hit.tet >= 0) {
-        ++res.points_located;
-      } else {
-        hit = locator->nearest(q, 2);
-        if (hit.tet < 0) hit = locator->nearest_brute_force(q);
-        ++res.points_failed;
-        res.max_failed_distance =
-            std::max(res.max_failed_distance, -hit.score / (rep.deformed ? scale : 1.0));
-      }
-      if (hit.tet < 0) throw core::GeometryError("gridding: the polycube has no usable tet");
-      // clamp to the tet (points on the boundary may be outside by rounding) and map
-      std::array<double, 4> b = hit.bary;
-      double sum = 0.0;
-      for (double& x : b) sum += (x = std::max(0.0, x));
-      const auto& t = map.tets[static_cast<std::size_t>(hit.tet)];
-      Vec3 p = Vec3::Zero();
-      for (int k = 0; k < 4; ++k) p += (b[k] / sum) * map.model[t[k]];
-      model_pos[static_cast<std::size_t>(pid)] = p;
-      if ((++done & 0xFFFF) == 0) task.set(static_cast<std::int64_t>(done));
-    }
-    task.finish();
-  }
+  const std::vector<Vec3> model_pos = map_lattice_points(map, base_locator, space, lat, to_locate, res);
   res.seconds_locate = seconds_since(t_locate);
   if (res.points_failed > 0)
     core::logger().warn(
@@ -808,18 +960,7 @@ GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& option
         res.points_failed, res.max_failed_distance);
 
   // 7. assemble the meshes
-  if (options.volume) {
-    res.hex_model.cells = hp.cells;
-    res.hex_model.points = model_pos;
-    res.inverted_model_hexes = count_inverted_hexes(res.hex_model);
-  }
-  res.quad_polycube = hb.surface;
-  res.quad_model.cells = hb.surface.cells;
-  res.quad_model.points.reserve(hb.vertex_map.size());
-  for (int v : hb.vertex_map)
-    res.quad_model.points.push_back(model_pos[static_cast<std::size_t>(v)]);
-  res.quad_polycube.labels.clear();
-  res.quad_model.labels.clear();
+  assemble_meshes(res, std::move(lat.hexes), hb, model_pos, options.volume);
   res.seconds_total = seconds_since(t_start);
   return res;
 }

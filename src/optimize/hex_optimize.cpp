@@ -293,10 +293,9 @@ void add(PhaseReport& p, const solve::UntangleResult& r) {
   p.newton_steps += r.newton_steps;
 }
 
-}  // namespace
+// --- the steps of optimize_hex_mesh -----------------------------------------------------------
 
-OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& target_mesh, const OptimizeOptions& o) {
-  const auto t0 = Clock::now();
+void check_input(const core::HexMesh& mesh, const OptimizeOptions& o) {
   if (mesh.cells.empty()) throw core::InputError("hex mesh: no hexahedra");
   if (!(o.surface_weight >= 0) || o.untangle_iterations < 0 || o.quality_rounds < 0 || o.quality_iterations < 1 ||
       !(o.volume_weight > 0) || !(o.feature_angle > 0 && o.feature_angle < 180) || !(o.feature_distance > 0) ||
@@ -306,6 +305,191 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   core::check_indices(mesh);
   for (const Vec3& p : mesh.points)
     if (!p.allFinite()) throw core::InputError("hex mesh: non-finite coordinate");
+}
+
+//! What every optimization of the mesh shares: the problem and the references of the corners.
+struct Optimization {
+  core::HexMesh& mesh;
+  const core::TriMesh& target_mesh;
+  Problem& pb;
+  const std::vector<double>& size;                    //!< #H input mean edge length of each hex
+  const std::vector<std::array<double, 3>>& lengths;  //!< #H*8 by 3 reference edge lengths of the corners
+  //! #H weight factors of the hexes: 1 while untangling, raised on the worst hexes by the
+  //! quality rounds (the retries keep the last round's).
+  std::vector<double> multiplier;
+  const OptimizeOptions& o;
+
+  [[nodiscard]] solve::TetElements elements() const { return corner_elements(mesh, lengths, multiplier); }
+  //! The boundary's Hausdorff distance to the target, relative to its bounding-box diagonal.
+  [[nodiscard]] double hausdorff() const { return quality::hausdorff_distance(mesh, target_mesh).relative; }
+};
+
+//! Phase 1: untangle (corners fixed at the target may have folded elements too).
+void untangle_phase(const Optimization& w, PhaseReport& report) {
+  if (inverted_corners(w.mesh) > 0 && w.o.untangle_iterations > 0) {
+    solve::UntangleOptions uo;
+    uo.max_iterations = w.o.untangle_iterations;
+    uo.newton_steps = 2;
+    uo.volume_weight = w.o.volume_weight;
+    uo.initial_epsilon = 1.0;
+    uo.stop_when_untangled = true;
+    uo.stall_iterations = 30;
+    const solve::UntangleResult r = run(w.pb, w.elements(), w.mesh, uo, w.o, true, w.o.face_attraction);
+    add(report, r);
+    core::logger().info("optimize: untangling {} iterations, {} -> {} inverted corners", r.iterations,
+                        r.inverted_before, r.inverted_after);
+  }
+}
+
+//! Options of a quality optimization (barrier kept: valid meshes start with a tiny ε; the
+//! initial ε only matters while tangled).
+solve::UntangleOptions quality_options(const OptimizeOptions& o, int iterations) {
+  solve::UntangleOptions uo;
+  uo.max_iterations = iterations;
+  uo.newton_steps = 1;
+  uo.volume_weight = o.volume_weight;
+  uo.initial_epsilon = 1.0;
+  uo.tolerance = 1e-4;
+  uo.stall_iterations = 0;
+  return uo;
+}
+
+//! Where the quality phase starts.
+struct Start {
+  std::vector<Vec3> points;
+  int inverted = 0;      //!< inverted corners
+  double average = 0.0;  //!< a round may not lower the average scaled Jacobian below this
+};
+
+//! The best state of the quality phase so far.
+struct Best {
+  quality::ScaledJacobianSummary summary;  //!< with the per-hex values
+  int inverted = 0;                        //!< inverted corners
+  std::vector<Vec3> points;
+};
+
+Best best_of(const core::HexMesh& mesh) { return {summary(mesh, true), inverted_corners(mesh), mesh.points}; }
+
+//! Heavier weights on the worst hexes (those within 0.1 of the minimum, at least 1%), so that
+//! the next round raises the minimum.
+void weigh_worst_hexes(const quality::ScaledJacobianSummary& best, std::vector<double>& multiplier) {
+  std::vector<double> sorted = best.values;
+  const std::size_t k = std::min(sorted.size() - 1, sorted.size() / 100);
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(k), sorted.end());
+  const double tau = std::max(sorted[k], best.min + 0.1);
+  for (std::size_t c = 0; c < multiplier.size(); ++c)
+    if (best.values[c] < tau) multiplier[c] *= 4.0;
+}
+
+//! The quality rounds from the best points (multipliers from 1), keeping the best state.
+void quality_rounds(Optimization& w, const Start& start, double face_weight, Best& best, OptimizeResult& res) {
+  std::fill(w.multiplier.begin(), w.multiplier.end(), 1.0);
+  for (int round = 0; round < w.o.quality_rounds; ++round) {
+    if (round > 0) weigh_worst_hexes(best.summary, w.multiplier);
+    const solve::UntangleOptions uo = quality_options(w.o, w.o.quality_iterations);
+    w.mesh.points = best.points;
+    const solve::UntangleResult r = run(w.pb, w.elements(), w.mesh, uo, w.o, false, face_weight);
+    add(res.quality, r);
+    const quality::ScaledJacobianSummary s = summary(w.mesh, true);
+    const int inv = inverted_corners(w.mesh);
+    const bool better = inv < best.inverted ||
+                        (inv == best.inverted && inv > 0 && s.min > best.summary.min) ||
+                        (inv == 0 && best.inverted == 0 && s.min > best.summary.min && s.average >= start.average);
+    core::logger().info("optimize: quality round {}: {} iterations, mSJ {:.4f} aSJ {:.4f} inverted corners {}{}",
+                        round, r.iterations, s.min, s.average, inv, better ? "" : " (not kept)");
+    if (better) {
+      best.summary = s;
+      best.inverted = inv;
+      best.points = w.mesh.points;
+      ++res.rounds_accepted;
+    }
+  }
+  w.mesh.points = best.points;
+}
+
+//! Drift retries. The heavier weights of the worst hexes may have pulled some of their boundary
+//! vertices off the target, where the snap cannot put them back without lowering the minimum
+//! (e.g. a vertex of the worst hex at a concave polycube corner on a curved part of the surface,
+//! a fraction of an edge length off). When that takes the boundary beyond the Hausdorff bound,
+//! stiffen the attraction of the drifted vertices only and optimize again from the state before
+//! the rounds: the surface is a constraint, the minimum scaled Jacobian the objective. A retry is
+//! kept only when it lowers the Hausdorff distance. Returns the Hausdorff distance of the result
+//! (0 when not measured).
+double drift_retries(Optimization& w, const Start& start, Best& best, OptimizeResult& res) {
+  const OptimizeOptions& o = w.o;
+  core::HexMesh& mesh = w.mesh;
+  const double diagonal = core::bounding_box(w.target_mesh.points).extent().norm();
+  best.points = mesh.points;
+  double best_hausdorff = o.drift_retries > 0 && res.inverted_corners_before == 0 ? w.hausdorff() : 0.0;
+  for (int retry = 0; retry < o.drift_retries && res.inverted_corners_before == 0; ++retry) {
+    if (best_hausdorff <= o.hausdorff_bound) break;
+    const std::vector<double> drift = w.pb.drift_distances(mesh);
+    std::vector<std::size_t> off;
+    for (std::size_t k = 0; k < drift.size(); ++k)
+      if (drift[k] > o.drift_diagonal * diagonal) off.push_back(k);
+    if (off.empty()) break;
+    for (std::size_t k : off) w.pb.stiffness[k] *= 16.0;
+    w.pb.set_weights(mesh, w.size, o.surface_weight);
+    mesh.points = start.points;
+    const solve::UntangleOptions uo = quality_options(o, o.quality_iterations * std::max(1, o.quality_rounds));
+    const solve::UntangleResult r = run(w.pb, w.elements(), mesh, uo, o, false, o.face_attraction);
+    add(res.quality, r);
+    if (inverted_corners(mesh) > 0) {  // never trade validity for the surface
+      mesh.points = best.points;
+      break;
+    }
+    const quality::ScaledJacobianSummary s = summary(mesh, true);
+    if (o.face_attraction <= 0) w.pb.snap(mesh, s.min);
+    const double h = w.hausdorff();
+    if (!(h < best_hausdorff)) {
+      core::logger().info("optimize: stiffer attraction on {} drifted vertices did not lower the Hausdorff distance "
+                          "({:.3f} %); not kept", off.size(), 100 * h);
+      mesh.points = best.points;
+      break;
+    }
+    core::logger().info("optimize: Hausdorff {:.3f} % above the bound; {} drifted boundary vertices stiffened: "
+                        "{:.3f} %, mSJ {:.4f}", 100 * best_hausdorff, off.size(), 100 * h, s.min);
+    best.summary = s;
+    best_hausdorff = h;
+    best.points = mesh.points;
+    ++res.drift_retries;
+  }
+  return best_hausdorff;
+}
+
+//! Fit retry: still beyond the bound with the boundary vertices on the target, the distance is
+//! the chords of quads too long for the surface's curvature or straddling a sharp edge the hex
+//! mesh has no edge for. Run the rounds again from their start with the quad centres attracted
+//! too (face_attraction.h): the boundary then fits the surface instead of interpolating it.
+//! Kept only when it lowers the Hausdorff distance (best_hausdorff, 0 when not measured yet).
+void fit_retry(Optimization& w, const Start& start, double best_hausdorff, Best& best, OptimizeResult& res) {
+  const OptimizeOptions& o = w.o;
+  core::HexMesh& mesh = w.mesh;
+  if (!(o.fit_retry > 0 && o.face_attraction <= 0 && start.inverted == 0 && inverted_corners(mesh) == 0)) return;
+  if (best_hausdorff <= 0) best_hausdorff = w.hausdorff();
+  if (best_hausdorff <= o.hausdorff_bound) return;
+  const Best kept{best.summary, best.inverted, mesh.points};
+  mesh.points = start.points;
+  best = best_of(mesh);
+  quality_rounds(w, start, o.fit_retry, best, res);
+  const double h = w.hausdorff();
+  if (best.inverted == 0 && h < best_hausdorff) {
+    core::logger().info("optimize: Hausdorff {:.3f} % above the bound; quad centres attracted too: {:.3f} %, "
+                        "mSJ {:.4f}", 100 * best_hausdorff, 100 * h, best.summary.min);
+    res.fit_retry = true;
+  } else {
+    core::logger().info("optimize: attracting the quad centres did not lower the Hausdorff distance ({:.3f} %); "
+                        "not kept", 100 * h);
+    mesh.points = kept.points;
+    best = kept;
+  }
+}
+
+}  // namespace
+
+OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& target_mesh, const OptimizeOptions& o) {
+  const auto t0 = Clock::now();
+  check_input(mesh, o);
 
   OptimizeResult res;
   res.before = summary(mesh, false);
@@ -323,165 +507,32 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   res.boundary_vertices = pb.roles.surface + pb.roles.feature;
   res.feature_vertices = pb.roles.feature;
   res.corner_vertices = pb.roles.corners;
-  std::vector<double> multiplier(mesh.cells.size(), 1.0);
+  Optimization w{mesh, target_mesh, pb, size, lengths, std::vector<double>(mesh.cells.size(), 1.0), o};
   res.setup.seconds = seconds_since(t0);
   core::logger().info("optimize: {} hexes, {} surface, {} feature, {} corner vertices; target {} sharp edges, {} corners",
                       mesh.num_cells(), pb.roles.surface, pb.roles.feature, pb.roles.corners,
                       res.target_feature_edges, res.target_corners);
 
-  // Phase 1: untangle (corners fixed at the target may have folded elements too).
+  // Phase 1: untangle.
   const auto t1 = Clock::now();
-  if (inverted_corners(mesh) > 0 && o.untangle_iterations > 0) {
-    solve::UntangleOptions uo;
-    uo.max_iterations = o.untangle_iterations;
-    uo.newton_steps = 2;
-    uo.volume_weight = o.volume_weight;
-    uo.initial_epsilon = 1.0;
-    uo.stop_when_untangled = true;
-    uo.stall_iterations = 30;
-    const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o, true, o.face_attraction);
-    add(res.untangle, r);
-    core::logger().info("optimize: untangling {} iterations, {} -> {} inverted corners", r.iterations,
-                        r.inverted_before, r.inverted_after);
-  }
+  untangle_phase(w, res.untangle);
   res.untangle.seconds = seconds_since(t1);
 
   // Phase 2: quality rounds, keeping the best state.
   const auto t2 = Clock::now();
-  quality::ScaledJacobianSummary best = summary(mesh, true);
-  int best_inverted = inverted_corners(mesh);
-  const int start_inverted = best_inverted;
+  Best best = best_of(mesh);
   // Keep the average: exactly when the input was valid; after untangling, within a small slack
   // (the untangled state's average is not a quality the user asked to keep).
-  const double start_average = best.average - (res.untangle.iterations > 0 ? o.average_slack : 0.0);
-  std::vector<Vec3> best_points = mesh.points;
-  const std::vector<Vec3> start_points = mesh.points;
-  // Options of a quality optimization (barrier kept: valid meshes start with a tiny ε; the
-  // initial ε only matters while tangled).
-  auto quality_options = [&](int iterations) {
-    solve::UntangleOptions uo;
-    uo.max_iterations = iterations;
-    uo.newton_steps = 1;
-    uo.volume_weight = o.volume_weight;
-    uo.initial_epsilon = 1.0;
-    uo.tolerance = 1e-4;
-    uo.stall_iterations = 0;
-    return uo;
-  };
-  const double diagonal = core::bounding_box(target_mesh.points).extent().norm();
-  // The quality rounds from the current points (multipliers from 1), keeping the best state.
-  auto quality_rounds = [&](double face_weight) {
-    std::fill(multiplier.begin(), multiplier.end(), 1.0);
-    for (int round = 0; round < o.quality_rounds; ++round) {
-      // Heavier weights on the worst hexes (those within 0.1 of the minimum, at least 1%).
-      if (round > 0) {
-        std::vector<double> sorted = best.values;
-        const std::size_t k = std::min(sorted.size() - 1, sorted.size() / 100);
-        std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(k), sorted.end());
-        const double tau = std::max(sorted[k], best.min + 0.1);
-        for (std::size_t c = 0; c < multiplier.size(); ++c)
-          if (best.values[c] < tau) multiplier[c] *= 4.0;
-      }
-      const solve::UntangleOptions uo = quality_options(o.quality_iterations);
-      mesh.points = best_points;
-      const solve::UntangleResult r = run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o, false, face_weight);
-      add(res.quality, r);
-      const quality::ScaledJacobianSummary s = summary(mesh, true);
-      const int inv = inverted_corners(mesh);
-      const bool better = inv < best_inverted ||
-                          (inv == best_inverted && inv > 0 && s.min > best.min) ||
-                          (inv == 0 && best_inverted == 0 && s.min > best.min && s.average >= start_average);
-      core::logger().info("optimize: quality round {}: {} iterations, mSJ {:.4f} aSJ {:.4f} inverted corners {}{}",
-                          round, r.iterations, s.min, s.average, inv, better ? "" : " (not kept)");
-      if (better) {
-        best = s;
-        best_inverted = inv;
-        best_points = mesh.points;
-        ++res.rounds_accepted;
-      }
-    }
-    mesh.points = best_points;
-  };
-  quality_rounds(o.face_attraction);
+  const Start start{mesh.points, best.inverted,
+                    best.summary.average - (res.untangle.iterations > 0 ? o.average_slack : 0.0)};
+  quality_rounds(w, start, o.face_attraction, best, res);
   // Finally put the boundary exactly on the target where that keeps every hex at or above the
   // minimum reached (and inverts nothing); not when the boundary fits the surface by its quad
   // centres too (the vertices are then meant to be off it by a fraction of the chord).
-  if (o.face_attraction <= 0) pb.snap(mesh, best.min);
-  // The heavier weights of the worst hexes may have pulled some of their boundary vertices off
-  // the target, where the snap cannot put them back without lowering the minimum
-  // (cube_minus_sphere: a vertex of the worst hex, at a concave polycube corner on the sphere
-  // cavity, a third of an edge length off). When that takes the boundary beyond the Hausdorff
-  // bound, stiffen the attraction of the drifted vertices only and optimize again from the
-  // state before the rounds: the surface is a constraint, the minimum scaled Jacobian the
-  // objective. A retry is kept only when it lowers the Hausdorff distance.
-  best_points = mesh.points;
-  auto hausdorff = [&] { return quality::hausdorff_distance(mesh, target_mesh).relative; };
-  double best_hausdorff = o.drift_retries > 0 && res.inverted_corners_before == 0 ? hausdorff() : 0.0;
-  for (int retry = 0; retry < o.drift_retries && res.inverted_corners_before == 0; ++retry) {
-    if (best_hausdorff <= o.hausdorff_bound) break;
-    const std::vector<double> drift = pb.drift_distances(mesh);
-    std::vector<std::size_t> off;
-    for (std::size_t k = 0; k < drift.size(); ++k)
-      if (drift[k] > o.drift_diagonal * diagonal) off.push_back(k);
-    if (off.empty()) break;
-    for (std::size_t k : off) pb.stiffness[k] *= 16.0;
-    pb.set_weights(mesh, size, o.surface_weight);
-    mesh.points = start_points;
-    const solve::UntangleOptions uo = quality_options(o.quality_iterations * std::max(1, o.quality_rounds));
-    const solve::UntangleResult r =
-        run(pb, corner_elements(mesh, lengths, multiplier), mesh, uo, o, false, o.face_attraction);
-    add(res.quality, r);
-    if (inverted_corners(mesh) > 0) {  // never trade validity for the surface
-      mesh.points = best_points;
-      break;
-    }
-    const quality::ScaledJacobianSummary s = summary(mesh, true);
-    if (o.face_attraction <= 0) pb.snap(mesh, s.min);
-    const double h = hausdorff();
-    if (!(h < best_hausdorff)) {
-      core::logger().info("optimize: stiffer attraction on {} drifted vertices did not lower the Hausdorff distance "
-                          "({:.3f} %); not kept", off.size(), 100 * h);
-      mesh.points = best_points;
-      break;
-    }
-    core::logger().info("optimize: Hausdorff {:.3f} % above the bound; {} drifted boundary vertices stiffened: "
-                        "{:.3f} %, mSJ {:.4f}", 100 * best_hausdorff, off.size(), 100 * h, s.min);
-    best = s;
-    best_hausdorff = h;
-    best_points = mesh.points;
-    ++res.drift_retries;
-  }
-  // Fit retry: still beyond the bound with the boundary vertices on the target, the distance is
-  // the chords of quads too long for the surface's curvature or straddling a sharp edge the hex
-  // mesh has no edge for (bunny, max-planck, fandisk). Run the rounds again from their start
-  // with the quad centres attracted too (face_attraction.h): the boundary then fits the surface
-  // instead of interpolating it. Kept only when it lowers the Hausdorff distance.
-  if (o.fit_retry > 0 && o.face_attraction <= 0 && start_inverted == 0 && inverted_corners(mesh) == 0) {
-    if (best_hausdorff <= 0) best_hausdorff = hausdorff();
-    if (best_hausdorff > o.hausdorff_bound) {
-      const quality::ScaledJacobianSummary kept = best;
-      const std::vector<Vec3> kept_points = mesh.points;
-      const int kept_inverted = best_inverted;
-      mesh.points = start_points;
-      best = summary(mesh, true);
-      best_inverted = inverted_corners(mesh);
-      best_points = mesh.points;
-      quality_rounds(o.fit_retry);
-      const double h = hausdorff();
-      if (best_inverted == 0 && h < best_hausdorff) {
-        core::logger().info("optimize: Hausdorff {:.3f} % above the bound; quad centres attracted too: {:.3f} %, "
-                            "mSJ {:.4f}", 100 * best_hausdorff, 100 * h, best.min);
-        best_hausdorff = h;
-        res.fit_retry = true;
-      } else {
-        core::logger().info("optimize: attracting the quad centres did not lower the Hausdorff distance ({:.3f} %); "
-                            "not kept", 100 * h);
-        mesh.points = kept_points;
-        best = kept;
-        best_inverted = kept_inverted;
-      }
-    }
-  }
+  if (o.face_attraction <= 0) pb.snap(mesh, best.summary.min);
+  // Then the retries, when the boundary is beyond the Hausdorff bound.
+  const double hausdorff = drift_retries(w, start, best, res);
+  fit_retry(w, start, hausdorff, best, res);
   res.quality.seconds = seconds_since(t2);
 
   res.after = summary(mesh, false);
