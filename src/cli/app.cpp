@@ -4,6 +4,7 @@
 #include "core/log.h"
 #include "core/progress.h"
 #include "mesh/grid.h"
+#include "quality/scaled_jacobian.h"
 
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <unistd.h>
@@ -47,6 +48,16 @@ GlobalOptions& global_options() {
   return g;
 }
 
+nlohmann::json scaled_jacobian_json(const quality::ScaledJacobianSummary& s) {
+  nlohmann::json bins = nlohmann::json::array();
+  for (int i = 0; i < quality::kHistogramBins; ++i)
+    bins.push_back({{"lower", quality::histogram_bin_lower(i)},
+                    {"upper", quality::histogram_bin_upper(i)},
+                    {"count", s.histogram[i]}});
+  return {{"min", s.min},           {"average", s.average}, {"max", s.max},
+          {"inverted", s.inverted}, {"invalid", s.invalid}, {"histogram", bins}};
+}
+
 CLI::Option* add_sizing_option(CLI::App& sub, mesh::GridSizing& sizing, const std::string& help) {
   return sub.add_option("--sizing", sizing, help)
       ->transform(CLI::CheckedTransformer(
@@ -84,6 +95,18 @@ void print_result(const nlohmann::json& json, const std::string& text) {
     std::cout << json.dump(2) << '\n';
   else if (!text.empty())
     std::cout << text << (text.back() == '\n' ? "" : "\n");
+}
+
+void add_expert_options(CLI::App& sub, const std::vector<CLI::Option*>& expert) {
+  for (CLI::Option* o : expert) o->group("");
+  sub.add_flag_callback(
+      "--help-expert",
+      [expert] {
+        for (CLI::Option* o : expert) o->group("Expert options");
+        throw CLI::CallForHelp();
+      },
+      "Show the expert options too (settings of the algorithm's steps; the defaults are tuned)");
+  sub.footer("Expert options: see --help-expert.");
 }
 
 int run_guarded(const std::function<void()>& body) {

@@ -9,9 +9,13 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace polycube::mesh {
 enum class GridSizing;
+}
+namespace polycube::quality {
+struct ScaledJacobianSummary;
 }
 
 namespace polycube::cli {
@@ -37,8 +41,15 @@ void setup_logging_and_progress();
 //! Print a summary: `json` as JSON on stdout when --json was given, else `text` (unless empty).
 void print_result(const nlohmann::json& json, const std::string& text);
 
+//! A scaled-Jacobian summary as JSON, so that every command reporting one gives it the same shape:
+//! `{"min", "average", "max", "inverted", "invalid", "histogram": [{"lower", "upper", "count"}, ...]}`.
+nlohmann::json scaled_jacobian_json(const quality::ScaledJacobianSummary& summary);
+
 //! Add `--sizing uniform|map` (mesh/grid.h) to a subcommand.
 CLI::Option* add_sizing_option(CLI::App& sub, mesh::GridSizing& sizing, const std::string& help);
+
+//! Hide `expert` from the subcommand's --help and add `--help-expert`, which lists them too.
+void add_expert_options(CLI::App& sub, const std::vector<CLI::Option*>& expert);
 
 //! Run the parsed application, mapping exceptions to exit codes and one-line messages.
 int run_guarded(const std::function<void()>& body);

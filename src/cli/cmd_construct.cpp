@@ -96,6 +96,8 @@ void run_construct(const ConstructCliOptions& o) {
       {"boundaries", r.boundaries},
       {"fidelity", r.fidelity},
       {"repair_moves", r.repair_moves},
+      {"attempt", r.attempt.name()},
+      {"attempts", r.attempts},
       {"axis_rotation",
        {{"rotated", !r.axis_rotation.rotation.isIdentity()},
         {"l1_energy_before", r.axis_rotation.energy_before},
@@ -173,64 +175,9 @@ void register_construct(CLI::App& app) {
                   "normals)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  sub->add_option("--predeform-retry", c.predeform_retry,
-                  "When every attempt fails (and --predeform is 0), run them again with a pre-deformation of this "
-                  "many iterations and estimate-driven unfolding (0: never)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
   sub->add_flag("!--no-align", c.align_axes,
                 "Keep the model's orientation (default: rotate it so its normals cluster on the axes before the "
                 "labeling; the written model keeps the input's positions)");
-  sub->add_option("--smooth", c.labeling.smoothing_rounds,
-                  "Sweeps of chart-boundary smoothing after the graph cut (teeth and zigzags removed)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  sub->add_option("--predeform-weight", c.predeform.surface_weight,
-                  "Weight of the normal alignment against rigidity in the pre-deformation")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--iterations", c.deform.max_iterations, "Outer iterations of the untangling/optimization")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--volume-weight", c.deform.volume_weight, "Weight of the volume term of the elliptic energy")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--refine-rounds", c.deform.refine_rounds,
-                  "When tets stay inverted, split their edges and untangle again, at most this many times")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  sub->add_flag("!--no-boundary-first", c.deform.boundary_first,
-                "Never place the boundary first (polycube edges straight between their corners, charts untangled in "
-                "2D inside them, then the volume with the boundary fixed); only the free-boundary untangling");
-  sub->add_flag("!--untangle-first", c.deform.boundary_first_start,
-                "Untangle with the boundary free (then the local repairs) before trying the boundary-first "
-                "placement; by default the boundary is placed first and the free untangling is the fallback");
-  sub->add_flag("--flow", c.deform.flow,
-                "First polycube by the foldover-free planarity flow (the model flows towards its chart planes "
-                "without folding) instead of the as-rigid-as-possible least squares");
-  sub->add_option("--flow-iterations", c.deform.flow_options.iterations,
-                  "Outer iterations of the planarity flow at most")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--flow-growth", c.deform.flow_options.growth,
-                  "Growth factor of the planarity flow's attraction weight per iteration")
-      ->capture_default_str()
-      ->check(CLI::Range(1.0001, 100.0));
-  sub->add_option("--straighten", c.straighten_moves,
-                  "After the repair, at most this many local relabellings removing turning points of the chart "
-                  "boundaries (chains running backwards along their polycube edge's axis; 0: none)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  sub->add_option("--estimate-rounds", c.estimate_rounds,
-                  "Before each deformation, while the fast polycube estimate folds triangles, penalize their labels "
-                  "and label again, at most this many times")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  sub->add_option("--unfold-moves", c.unfold_moves,
-                  "After the repair, at most this many local relabellings against the folds of the fast polycube "
-                  "estimate (0: none)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
   sub->add_option("--time-limit", c.time_limit,
                   "Seconds after which no new labeling/deformation attempt starts (0: no limit)")
       ->capture_default_str()
@@ -238,11 +185,64 @@ void register_construct(CLI::App& app) {
   sub->add_option("--keep-failed", opts->keep_failed,
                   "When certification fails, write the best attempt to this folder as uncertified_model.mesh and "
                   "uncertified_polycube.mesh (boundary labels as triangle references), for diagnosis");
-  sub->add_option("--relabel-rounds", c.relabel_rounds,
-                  "When tets stay inverted, penalize the labels around them and label again, at most this many "
-                  "times per compactness")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+  add_expert_options(*sub, {
+      sub->add_option("--predeform-retry", c.predeform_retry,
+                      "When every attempt fails (and --predeform is 0), run them again with a pre-deformation of "
+                      "this many iterations and estimate-driven unfolding (0: never)")
+          ->capture_default_str()
+          ->check(CLI::NonNegativeNumber),
+      sub->add_option("--smooth", c.labeling.smoothing_rounds,
+                      "Sweeps of chart-boundary smoothing after the graph cut (teeth and zigzags removed)")
+          ->capture_default_str()
+          ->check(CLI::NonNegativeNumber),
+      sub->add_option("--predeform-weight", c.predeform.surface_weight,
+                      "Weight of the normal alignment against rigidity in the pre-deformation")
+          ->capture_default_str()
+          ->check(CLI::PositiveNumber),
+      sub->add_option("--iterations", c.deform.untangle.max_iterations,
+                      "Outer iterations of the untangling/optimization")
+          ->capture_default_str()
+          ->check(CLI::PositiveNumber),
+      sub->add_option("--volume-weight", c.deform.untangle.volume_weight,
+                      "Weight of the volume term of the elliptic energy")
+          ->capture_default_str()
+          ->check(CLI::PositiveNumber),
+      sub->add_option("--refine-rounds", c.deform.refine_rounds,
+                      "When tets stay inverted, split their edges and untangle again, at most this many times")
+          ->capture_default_str()
+          ->check(CLI::NonNegativeNumber),
+      sub->add_flag_callback("--no-boundary-first", [&c] { c.deform.boundary_first = construct::BoundaryFirst::Off; },
+                             "Never place the boundary first (polycube edges straight between their corners, charts "
+                             "untangled in 2D inside them, then the volume with the boundary fixed); only the "
+                             "free-boundary untangling and the local repairs"),
+      sub->add_flag_callback("--untangle-first",
+                             [&c] { c.deform.boundary_first = construct::BoundaryFirst::AfterRepairs; },
+                             "Untangle with the boundary free (then the local repairs) before trying the "
+                             "boundary-first placement; by default the boundary is placed first and the free "
+                             "untangling is the fallback"),
+      sub->add_flag_callback("--flow",
+                             [&c] { c.deform.first.method = mapping::FirstPolycubeMethod::PlanarityFlow; },
+                             "First polycube by the foldover-free planarity flow (the model flows towards its chart "
+                             "planes without folding) instead of the as-rigid-as-possible least squares"),
+      sub->add_option("--flow-iterations", c.deform.first.flow.iterations,
+                      "Outer iterations of the planarity flow at most")
+          ->capture_default_str()
+          ->check(CLI::PositiveNumber),
+      sub->add_option("--flow-growth", c.deform.first.flow.growth,
+                      "Growth factor of the planarity flow's attraction weight per iteration")
+          ->capture_default_str()
+          ->check(CLI::Range(1.0001, 100.0)),
+      sub->add_option("--straighten", c.straighten_moves,
+                      "After the repair, at most this many local relabellings removing turning points of the chart "
+                      "boundaries (chains running backwards along their polycube edge's axis; 0: none)")
+          ->capture_default_str()
+          ->check(CLI::NonNegativeNumber),
+      sub->add_option("--unfold-moves", c.unfold_moves,
+                      "After the repair, at most this many local relabellings against the folds of the fast "
+                      "polycube estimate (0: none)")
+          ->capture_default_str()
+          ->check(CLI::NonNegativeNumber),
+  });
   // Fault injection for the tests of --keep-failed: hidden from --help.
   sub->add_option("--inject-failure", opts->inject_failure, "Testing only: treat the result as not certified")
       ->check(CLI::IsMember({"certify"}))

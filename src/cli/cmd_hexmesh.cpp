@@ -1,6 +1,7 @@
 //! `polycube hexmesh` and `polycube quadmesh`: grid a polycube map into a hex mesh (and its
 //! polycube-space twin) or a quad surface mesh (thesis §2.1).
 #include "cli/app.h"
+#include "core/stopwatch.h"
 #include "core/errors.h"
 #include "io/mesh_io.h"
 #include "io/polycube_map_io.h"
@@ -9,7 +10,6 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
 #include <memory>
 #include <string>
 
@@ -51,7 +51,7 @@ nlohmann::json snap_json(const mesh::SnapReport& r) {
 }
 
 void run_mesh(const MeshOptions& o, bool hex) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const core::Stopwatch clock;
   const core::PolycubeMap map = io::read_polycube_map(o.model, o.polycube);
   structure::validate_map(map, o.validate);
   mesh::GridOptions go = o.grid;
@@ -78,7 +78,7 @@ void run_mesh(const MeshOptions& o, bool hex) {
       io::write_mesh(o.polycube_out, core::to_mesh_data(r.quad_polycube));
   }
   const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      clock.seconds();
 
   const int points = static_cast<int>(r.hex_polycube.points.size());
   nlohmann::json j = {{"output", o.output},

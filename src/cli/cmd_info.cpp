@@ -71,8 +71,7 @@ void add_volume(nlohmann::json& j, std::string& text, const char* key, const cha
   quality::ScaledJacobianOptions so;
   so.keep_values = false;
   const quality::ScaledJacobianSummary sj = quality::scaled_jacobian(m, so);
-  j[key]["scaled_jacobian"] = {
-      {"min", sj.min}, {"average", sj.average}, {"inverted", sj.inverted}, {"invalid", sj.invalid}};
+  j[key]["scaled_jacobian"] = scaled_jacobian_json(sj);
   text += fmt::format("  scaled Jacobian: min {:.4f}, average {:.4f}, {} inverted, {} invalid\n", sj.min, sj.average,
                       sj.inverted, sj.invalid);
   text += "  boundary surface:\n" + surface_text(r.boundary, "    ");

@@ -39,10 +39,6 @@ core::TriMesh read_target(const std::string& path) {
   throw core::InputError(path + ": no surface or volume elements to use as target");
 }
 
-nlohmann::json sj_json(const quality::ScaledJacobianSummary& s) {
-  return {{"min", s.min}, {"average", s.average}, {"inverted", s.inverted}, {"invalid", s.invalid}};
-}
-
 nlohmann::json phase_json(const optimize::PhaseReport& p) {
   return {{"iterations", p.iterations}, {"newton_steps", p.newton_steps}, {"seconds", p.seconds}};
 }
@@ -67,8 +63,8 @@ void run_optimize(const OptimizeCliOptions& o) {
   j["input"] = o.input;
   j["target"] = o.target;
   j["hexes"] = mesh.num_cells();
-  j["before"] = sj_json(r.before);
-  j["after"] = sj_json(r.after);
+  j["before"] = scaled_jacobian_json(r.before);
+  j["after"] = scaled_jacobian_json(r.after);
   j["hausdorff"] = {{"absolute", dist.hausdorff}, {"relative", dist.relative},
                     {"upper_bound", dist.hausdorff_upper}, {"target_diagonal", dist.reference_diagonal}};
   j["vertices"] = {{"surface", r.boundary_vertices - r.feature_vertices}, {"feature", r.feature_vertices},

@@ -27,16 +27,6 @@ struct QualityOptions {
   double tolerance = quality::SurfaceDistanceOptions{}.tolerance;
 };
 
-nlohmann::json sj_json(const quality::ScaledJacobianSummary& s) {
-  nlohmann::json bins = nlohmann::json::array();
-  for (int i = 0; i < quality::kHistogramBins; ++i)
-    bins.push_back({{"lower", quality::histogram_bin_lower(i)},
-                    {"upper", quality::histogram_bin_upper(i)},
-                    {"count", s.histogram[i]}});
-  return {{"min", s.min},           {"average", s.average}, {"max", s.max},
-          {"inverted", s.inverted}, {"invalid", s.invalid}, {"histogram", bins}};
-}
-
 std::string sj_text(const quality::ScaledJacobianSummary& s) {
   return fmt::format("  {:<10}{:.4f}\n  {:<10}{:.4f}\n  {:<10}{}\n  {:<10}{}\n", "mSJ", s.min,
                      "aSJ", s.average, "inverted", s.inverted, "invalid", s.invalid);
@@ -114,7 +104,7 @@ void run_quality(const QualityOptions& o) {
     j["cell_type"] = "hex";
     j["cells"] = r.hexes;
     j["vertices"] = r.vertices;
-    j["scaled_jacobian"] = sj_json(r.sj);
+    j["scaled_jacobian"] = scaled_jacobian_json(r.sj);
     j["singular_vertices"] = r.singularities->singular_vertices;
     j["singular_edges"] = r.singularities->singular_edges;
     j["boundary_singular_edges"] = r.singularities->boundary_singular_edges;
@@ -144,7 +134,7 @@ void run_quality(const QualityOptions& o) {
     j["cell_type"] = "tet";
     j["cells"] = r.tets;
     j["vertices"] = r.vertices;
-    j["scaled_jacobian"] = sj_json(r.sj);
+    j["scaled_jacobian"] = scaled_jacobian_json(r.sj);
     text =
         fmt::format("{}: tet mesh, {} vertices\n  {:<10}{}\n", o.input, r.vertices, "#T", r.tets);
     text += sj_text(r.sj) + histogram_text(r.sj);
@@ -155,7 +145,7 @@ void run_quality(const QualityOptions& o) {
     j["cell_type"] = "quad";
     j["cells"] = r.quads;
     j["vertices"] = r.vertices;
-    j["scaled_jacobian"] = sj_json(r.sj);
+    j["scaled_jacobian"] = scaled_jacobian_json(r.sj);
     j["singular_vertices"] = r.singularities->singular_vertices;
     j["domains"] = r.domains->domains;
     text =

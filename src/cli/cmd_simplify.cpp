@@ -133,7 +133,8 @@ void register_simplify(CLI::App& app) {
   sub->add_option("--max-iterations", al.max_iterations, "At most this many alignment iterations")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  sub->add_option("--untangle-iterations", opts->simplify.fit.max_iterations, "Outer iterations of the untangler")
+  sub->add_option("--untangle-iterations", opts->simplify.fit.untangling.max_iterations,
+                  "Outer iterations of the untangler")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   sub->callback([opts] { run_simplify(*opts); });

@@ -97,9 +97,9 @@ Certificate certify_polycube_map(const core::PolycubeMap& map, const std::vector
   std::sort(keys.begin(), keys.end());
   std::vector<char> used(boundary.size(), 0);
   std::vector<int> off_first, facing_first;
-  for (std::size_t f = 0; f < b.surface.cells.size(); ++f) {
-    const auto& s = b.surface.cells[f];
-    const std::array<int, 3> tri{b.vertex_map[s[0]], b.vertex_map[s[1]], b.vertex_map[s[2]]};  // outward
+  const std::vector<core::Tri> outward = core::boundary_triangles(b);
+  for (std::size_t f = 0; f < outward.size(); ++f) {
+    const core::Tri& tri = outward[f];
     std::array<int, 3> k = tri;
     std::sort(k.begin(), k.end());
     auto it = std::lower_bound(keys.begin(), keys.end(), std::make_pair(k, -1));

@@ -1,4 +1,5 @@
-//! The whole construction chain (see construct.h).
+//! The whole construction chain (see construct.h): a plan of attempts, each labeling, repairing
+//! and deforming the model; the best kept and certified.
 #include "construct/construct.h"
 
 #include "construct/labeling_check.h"
@@ -6,6 +7,7 @@
 #include "construct/turning_points.h"
 #include "core/errors.h"
 #include "core/log.h"
+#include "core/stopwatch.h"
 #include "core/topology.h"
 #include "quality/distortion.h"
 
@@ -13,14 +15,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
+#include <map>
+#include <optional>
 
 namespace polycube::construct {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 std::string defects_text(const LabelingCheck& check, std::size_t max_listed = 5) {
   std::string s;
@@ -30,305 +30,256 @@ std::string defects_text(const LabelingCheck& check, std::size_t max_listed = 5)
   return s;
 }
 
-//! Add `amount` to the data cost of the current label of every triangle within `rings` vertex
-//! rings of the marked surface vertices. Returns the number of triangles penalized.
-int penalize_around(const core::TriMesh& s, const std::vector<std::vector<int>>& vertex_tris,
-                    const std::vector<int>& labels, std::vector<char> marked, int rings, double amount,
-                    std::vector<std::array<double, 6>>& penalty) {
-  for (int ring = 0; ring < rings; ++ring) {
-    std::vector<char> next = marked;
-    for (std::size_t v = 0; v < marked.size(); ++v)
-      if (marked[v])
-        for (int f : vertex_tris[v])
-          for (int w : s.cells[f]) next[w] = 1;
-    marked.swap(next);
+void append(std::string& list, const std::string& item) { list += (list.empty() ? "" : "; ") + item; }
+
+//! What every attempt reads: the (rotated) mesh and its boundary as a surface.
+struct Model {
+  core::TetMesh mesh;               //!< in the frame of the polycube's axes
+  core::TetBoundary boundary;       //!< mesh's boundary surface
+  std::vector<core::Tri> tris;      //!< its triangles in volume indices
+};
+
+//! The model rotated so its normals cluster on the axes (when asked): the labeling and the
+//! deformation work on the rotated model; the map's model positions stay the input's.
+Model rotated_model(const core::TetMesh& input, const ConstructOptions& o, AxisRotation& rotation) {
+  auto& log = core::logger();
+  Model m{input, {}, {}};
+  if (o.align_axes) {
+    rotation = best_axis_rotation(core::boundary(input).surface);
+    log.debug("construct: axis alignment: L1 energy of the normals {:.4f}, best rotation {:.4f}", rotation.energy_before,
+              rotation.energy_best);
+    if (!rotation.rotation.isIdentity()) {
+      for (core::Vec3& p : m.mesh.points) p = rotation.rotation * p;
+      log.info("construct: model rotated to the axes (normals' L1 energy {:.4f} -> {:.4f})", rotation.energy_before,
+               rotation.energy_after);
+    }
   }
-  if (penalty.empty()) penalty.assign(s.cells.size(), {0, 0, 0, 0, 0, 0});
-  int count = 0;
-  for (std::size_t f = 0; f < s.cells.size(); ++f) {
-    const auto& c = s.cells[f];
-    if (!marked[c[0]] && !marked[c[1]] && !marked[c[2]]) continue;
-    penalty[f][labels[f]] += amount;
-    ++count;
-  }
-  return count;
+  m.boundary = core::boundary(m.mesh);
+  m.tris = core::boundary_triangles(m.boundary);
+  return m;
 }
 
-//! A valid labeling steered by the fast polycube estimate: graph cut + repair, then while the
-//! estimate folds some triangles, penalize their labels and label again (estimate_rounds
-//! times at most). The valid labeling whose estimate folds the least area wins.
-struct SteeredLabeling {
+//! The pre-deformations of a plan, computed once each (attempts of one pass share theirs).
+class Predeformations {
+ public:
+  Predeformations(const Model& model, const ConstructOptions& o, ConstructTimes& seconds)
+      : model_(model), o_(o), seconds_(seconds) {}
+
+  //! The pre-deformation of `iterations` iterations (computed on first use).
+  const PredeformResult& get(int iterations) {
+    auto it = cache_.find(iterations);
+    if (it != cache_.end()) return it->second;
+    PredeformOptions po = o_.predeform;
+    po.iterations = iterations;
+    PredeformResult pre = predeform(model_.mesh, model_.tris, po);
+    seconds_.predeform += pre.seconds;
+    core::logger().info("construct: pre-deformation, {} iterations: misalignment {:.4f} -> {:.4f} ({} tets inverted), "
+                        "{:.2f} s",
+                        pre.iterations, pre.misalignment_before, pre.misalignment_after, pre.inverted, pre.seconds);
+    return cache_.emplace(iterations, std::move(pre)).first->second;
+  }
+
+ private:
+  const Model& model_;
+  const ConstructOptions& o_;
+  ConstructTimes& seconds_;
+  std::map<int, PredeformResult> cache_;
+};
+
+//! A labeling for one attempt: graph cut, repair to validity, then the optional local moves;
+//! with the fast polycube estimate of the result (for the log).
+struct AttemptLabeling {
   RepairResult repair;
   PolycubeEstimate estimate;
   bool valid = false;
-  int rounds = 0;
 };
 
-SteeredLabeling steered_labeling(const core::TriMesh& s, const std::vector<std::vector<int>>& vertex_tris,
-                                 const std::vector<core::Vec3>& shape, LabelingOptions& lopt, const ConstructOptions& o,
-                                 ConstructTimes& seconds) {
+AttemptLabeling label_for_attempt(const core::TriMesh& s, const std::vector<core::Vec3>& shape,
+                                  const LabelingOptions& lopt, const Attempt& attempt, const ConstructOptions& o,
+                                  ConstructTimes& seconds) {
   auto& log = core::logger();
-  SteeredLabeling best;
-  for (int round = 0; round <= o.estimate_rounds; ++round) {
-    auto t = Clock::now();
-    const LabelingResult lab = graph_cut_labeling(s, lopt);
-    seconds.label += since(t);
-    t = Clock::now();
-    RepairOptions ropt = o.repair;
-    ropt.energy = lopt;
-    RepairResult rep = repair_labeling(s, lab.labels, ropt);
-    if (!rep.valid()) {
-      seconds.repair += since(t);
-      if (!best.valid) best.repair = std::move(rep);
-      break;
-    }
-    if (o.unfold_moves > 0) {
-      UnfoldResult un = unfold_labeling(s, rep.labels, o.unfold_moves);
-      if (un.moves > 0) {
-        log.info("construct: unfolding the labeling: {} move(s), estimate folds {} -> {} triangles", un.moves,
-                 un.folded_before, un.folded_after);
-        rep.labels = std::move(un.labels);
-        rep.check = check_labeling(s, rep.labels);
-      }
-    }
-    if (o.straighten_moves > 0) {
-      StraightenResult st = straighten_boundaries(s, shape, rep.labels, o.straighten_moves);
-      if (st.moves > 0) {
-        log.info("construct: straightening chart boundaries: {} move(s), backward steps {} -> {} (length {:.3g} -> {:.3g})",
-                 st.moves, st.steps_before, st.steps_after, st.backward_before, st.backward_after);
-        rep.labels = std::move(st.labels);
-        rep.check = check_labeling(s, rep.labels);
-      }
-    }
-    PolycubeEstimate est = estimate_polycube(s, rep.labels);
-    seconds.repair += since(t);
-    log.info("construct: labeling round {}: {} charts, the polycube estimate folds {} triangles ({:.3g}% of the area)",
-             round, rep.check.layout.num_charts(), est.flipped.size(), 100.0 * est.flipped_area);
-    const bool fewer = !best.valid || est.flipped_area < best.estimate.flipped_area;
-    const bool done = est.flipped.empty();
-    std::vector<char> marked(s.points.size(), 0);
-    for (int f : est.flipped)
-      for (int v : s.cells[f]) marked[v] = 1;
-    const std::vector<int> labels = rep.labels;
-    if (fewer) {
-      best.repair = std::move(rep);
-      best.estimate = std::move(est);
-      best.valid = true;
-      best.rounds = round;
-    }
-    if (done || round == o.estimate_rounds) break;
-    penalize_around(s, vertex_tris, labels, std::move(marked), o.relabel_ring, o.relabel_penalty, lopt.penalty);
+  AttemptLabeling out;
+  core::Stopwatch clock;
+  const LabelingResult lab = graph_cut_labeling(s, lopt);
+  seconds.label += clock.seconds();
+  clock.restart();
+  RepairOptions ropt = o.repair;
+  ropt.energy = lopt;
+  out.repair = repair_labeling(s, lab.labels, ropt);
+  RepairResult& rep = out.repair;
+  if (!rep.valid()) {
+    seconds.repair += clock.seconds();
+    return out;
   }
-  return best;
+  if (attempt.unfold_moves > 0) {
+    UnfoldResult un = unfold_labeling(s, rep.labels, attempt.unfold_moves);
+    if (un.moves > 0) {
+      log.info("construct: unfolding the labeling: {} move(s), estimate folds {} -> {} triangles", un.moves,
+               un.folded_before, un.folded_after);
+      rep.labels = std::move(un.labels);
+      rep.check = check_labeling(s, rep.labels);
+    }
+  }
+  if (o.straighten_moves > 0) {
+    StraightenResult st = straighten_boundaries(s, shape, rep.labels, o.straighten_moves);
+    if (st.moves > 0) {
+      log.info("construct: straightening chart boundaries: {} move(s), backward steps {} -> {} (length {:.3g} -> {:.3g})",
+               st.moves, st.steps_before, st.steps_after, st.backward_before, st.backward_after);
+      rep.labels = std::move(st.labels);
+      rep.check = check_labeling(s, rep.labels);
+    }
+  }
+  out.estimate = estimate_polycube(s, rep.labels);
+  seconds.repair += clock.seconds();
+  log.info("construct: labeling: {} charts, the polycube estimate folds {} triangles ({:.3g}% of the area)",
+           rep.check.layout.num_charts(), out.estimate.flipped.size(), 100.0 * out.estimate.flipped_area);
+  out.valid = true;
+  return out;
 }
 
-}  // namespace
+//! What one attempt gave.
+struct AttemptResult {
+  Attempt attempt;
+  int repair_moves = 0;
+  std::optional<PredeformResult> predeform;  //!< its pre-deformation (points cleared)
+  std::optional<DeformResult> deformation;   //!< empty when no valid labeling or an unrealizable one
+  int failures = 0;                          //!< inverted tets + wrong-facing triangles (+1 when not untangled)
+  bool valid = false;                        //!< untangled and every boundary triangle facing its label
+  std::string failure;                       //!< why it is not valid
+};
 
-ConstructResult construct_from_prepared(const core::TetMesh& input, const ConstructOptions& o) {
-  auto& log = core::logger();
-  const auto t0 = Clock::now();
-  ConstructResult res;
+//! Failures of a deformation: tets inverted and boundary triangles facing away from their
+//! label in polycube space (with every tet positive, such a triangle means the surface folds
+//! over itself).
+void judge(AttemptResult& r) {
+  const DeformResult& d = *r.deformation;
+  const auto& P = d.polycube;
+  int inverted = 0, wrong_facing = 0;
+  for (const auto& c : d.mesh.cells) inverted += !core::positive_tet(P, c);
+  for (std::size_t f = 0; f < d.boundary.size(); ++f) wrong_facing += !faces_label(P, d.boundary[f], d.labels[f]);
+  r.failures = inverted + wrong_facing + (d.untangle.untangled ? 0 : 1);
+  r.valid = d.untangle.untangled && wrong_facing == 0;
+  if (!r.valid)
+    r.failure = fmt::format("{}: {} tets stay inverted, {} boundary triangles face away from their label",
+                            r.attempt.name(), d.untangle.inverted_after, wrong_facing);
+}
 
-  // Axis alignment: the labeling and the deformation work on the rotated model (the polycube's
-  // axes are the rotated frame); the map's model positions are the input's.
-  core::TetMesh mesh = input;
-  if (o.align_axes) {
-    res.axis_rotation = best_axis_rotation(core::boundary(input).surface);
-    log.debug("construct: axis alignment: L1 energy of the normals {:.4f}, best rotation {:.4f}", res.axis_rotation.energy_before, res.axis_rotation.energy_best);
-    if (!res.axis_rotation.rotation.isIdentity()) {
-      for (core::Vec3& p : mesh.points) p = res.axis_rotation.rotation * p;
-      log.info("construct: model rotated to the axes (normals' L1 energy {:.4f} -> {:.4f})",
-               res.axis_rotation.energy_before, res.axis_rotation.energy_after);
-    }
+//! Run one attempt: label (on the pre-deformed normals when it has a pre-deformation), repair,
+//! deform, and judge the result.
+AttemptResult run_attempt(const Attempt& attempt, const Model& model, Predeformations& predeformations,
+                          const ConstructOptions& o, ConstructTimes& seconds) {
+  AttemptResult r;
+  r.attempt = attempt;
+  const PredeformResult* pre = attempt.predeform_iterations > 0 ? &predeformations.get(attempt.predeform_iterations) : nullptr;
+  // The fidelity term reads the normals of the pre-deformed surface (the compactness term
+  // keeps the model's, so chart boundaries stay smooth); the chart boundaries are straightened
+  // on the pre-deformed surface.
+  LabelingOptions lopt = o.labeling;
+  lopt.compactness = attempt.compactness;
+  lopt.penalty.clear();
+  std::vector<core::Vec3> shape = model.boundary.surface.points;
+  if (pre) {
+    lopt.data_normals = triangle_normals(pre->points, model.tris);
+    for (std::size_t i = 0; i < shape.size(); ++i) shape[i] = pre->points[model.boundary.vertex_map[i]];
+    r.predeform = *pre;
+    r.predeform->points.clear();
   }
-
-  // Labeling, repair, deformation; when the map cannot be untangled, revisit the labeling with
-  // other compactness weights (each attempt is a different valid labeling).
-  const core::TetBoundary bnd = core::boundary(mesh);
-  std::vector<core::Tri> tris(bnd.surface.cells.size());
-  for (std::size_t f = 0; f < tris.size(); ++f) {
-    const auto& s = bnd.surface.cells[f];
-    tris[f] = {bnd.vertex_map[s[0]], bnd.vertex_map[s[1]], bnd.vertex_map[s[2]]};
+  const AttemptLabeling labeling = label_for_attempt(model.boundary.surface, shape, lopt, attempt, o, seconds);
+  const RepairResult& rep = labeling.repair;
+  r.repair_moves = rep.moves;
+  if (!labeling.valid) {
+    r.failure = fmt::format("{}: no valid labeling ({} defect(s): {})", attempt.name(), rep.check.defects.size(),
+                            defects_text(rep.check, 2));
+    return r;
   }
-  // Attempts: the compactness schedule (1, then the retry factors); within each, relabelling
-  // rounds that penalize the labels of the triangles around what could not be untangled.
-  std::vector<double> factors{1.0};
-  for (double f : o.retry_compactness_factors) factors.push_back(f);
-  const int nv0 = mesh.num_points();
-  std::vector<int> surface_of(static_cast<std::size_t>(nv0), -1);  // volume vertex -> surface vertex
-  for (std::size_t i = 0; i < bnd.vertex_map.size(); ++i) surface_of[bnd.vertex_map[i]] = static_cast<int>(i);
-  std::vector<std::vector<int>> vertex_tris(bnd.surface.points.size());
-  for (std::size_t f = 0; f < bnd.surface.cells.size(); ++f)
-    for (int v : bnd.surface.cells[f]) vertex_tris[v].push_back(static_cast<int>(f));
-  DeformResult def;
-  bool have_def = false;
-  int def_failures = 0;  // inverted tets + wrong-facing triangles of the kept attempt
-  std::string failures;
-  bool done = false;
-  int attempts = 0;
-  // Passes: the options as given; then, when every attempt failed and no pre-deformation was
-  // asked for, the same schedule again on a labeling of the pre-deformed normals with local
-  // unfolding against the fast estimate (cup certifies only so). The shapes that certify in
-  // the first pass get exactly the first pass's map.
-  const int passes = o.predeform.iterations == 0 && o.predeform_retry > 0 ? 2 : 1;
-  PredeformResult pre;
-  bool timed_out = false;
-  for (int pass = 0; pass < passes && !done && !timed_out && attempts < o.max_attempts; ++pass) {
-    ConstructOptions po = o;
-    if (pass == 1) {
-      po.predeform.iterations = o.predeform_retry;
-      po.unfold_moves = std::max(o.unfold_moves, o.predeform_retry_unfold_moves);
-      log.info("construct: every attempt failed; again with a pre-deformation of {} iterations", o.predeform_retry);
-    }
-    // Pre-deformation: the fidelity term of the labeling reads the normals of the pre-deformed
-    // surface (the compactness term keeps the model's, so chart boundaries stay smooth).
-    std::vector<core::Vec3> data_normals;
-    if (po.predeform.iterations > 0) {
-      pre = predeform(mesh, tris, po.predeform);
-      data_normals = triangle_normals(pre.points, tris);
-      res.seconds.predeform += pre.seconds;
-      log.info("construct: pre-deformation, {} iterations: misalignment {:.4f} -> {:.4f} ({} tets inverted), {:.2f} s",
-               pre.iterations, pre.misalignment_before, pre.misalignment_after, pre.inverted, pre.seconds);
-    }
-    const std::vector<core::Vec3>* start = po.predeform.iterations > 0 ? &pre.points : nullptr;
-    // The surface the chart boundaries are straightened on: the pre-deformed one when there is.
-    std::vector<core::Vec3> shape = bnd.surface.points;
-    if (start)
-      for (std::size_t i = 0; i < shape.size(); ++i) shape[i] = pre.points[bnd.vertex_map[i]];
-    for (std::size_t fi = 0; fi < factors.size() && !done && attempts < o.max_attempts; ++fi) {
-      LabelingOptions lopt = o.labeling;
-      lopt.compactness *= factors[fi];
-      if (!data_normals.empty()) lopt.data_normals = data_normals;
-      lopt.penalty.clear();
-      for (int round = 0; round <= o.relabel_rounds && !done && attempts < o.max_attempts; ++round) {
-        if (attempts > 0 && o.time_limit > 0 && since(t0) > o.time_limit) {
-          failures += fmt::format("{}time limit of {:g} s reached after {} attempt(s)", failures.empty() ? "" : "; ",
-                                  o.time_limit, attempts);
-          fi = factors.size();
-          timed_out = true;
-          break;
-        }
-        ++attempts;
-        const SteeredLabeling sl = steered_labeling(bnd.surface, vertex_tris, shape, lopt, po, res.seconds);
-        const RepairResult& rep = sl.repair;
-        res.repair_moves = rep.moves;
-        const std::string what = fmt::format("{}compactness {:.3g}{}", pass == 1 ? "pre-deformed, " : "", lopt.compactness,
-                                             round > 0 ? fmt::format(" relabel {}", round) : std::string());
-        if (!sl.valid) {
-          failures += fmt::format("{}{}: no valid labeling ({} defect(s): {})", failures.empty() ? "" : "; ", what,
-                                  rep.check.defects.size(), defects_text(rep.check, 2));
-          break;  // penalties only make it harder: go to the next compactness
-        }
-        log.info("construct: attempt {} ({}): labeling valid ({} charts, estimate folds {} triangles)", attempts, what,
-                 rep.check.layout.num_charts(), sl.estimate.flipped.size());
-        // Where the attempt failed (volume vertices of the original mesh); empty on success.
-        std::vector<char> bad(bnd.surface.points.size(), 0);
-        auto mark = [&](int v) {
-          if (v >= 0 && v < nv0 && surface_of[v] >= 0) bad[surface_of[v]] = 1;
-        };
-        DeformResult cur;
-        int cur_failures = 0;
-        try {
-          cur = deform_to_polycube(mesh, tris, rep.labels, o.deform, start);
-        } catch (const UnrealizableLabeling& e) {
-          failures += fmt::format("{}{}: {}", failures.empty() ? "" : "; ", what, e.what());
-          log.info("construct: attempt {}: {}", attempts, e.what());
-          for (int v : e.vertices()) mark(v);
-        }
-        const bool deformed = !cur.polycube.empty();
-        if (deformed) {
-          res.seconds.deform += cur.seconds_linear;
-          res.seconds.untangle += cur.seconds_untangle;
-          log.info("construct: deformation {:.2f} s ({} inverted after the linear step), untangling {:.2f} s "
-                   "({} iterations, {} Newton steps, min det {:.3g}, {} inverted)",
-                   cur.seconds_linear, cur.inverted_after_linear, cur.seconds_untangle, cur.untangle.iterations,
-                   cur.untangle.newton_steps, cur.untangle.min_det, cur.untangle.inverted_after);
-          // The tets and the boundary triangles that face away from their label in polycube
-          // space (with every tet positive, such a triangle means the surface folds over itself).
-          const auto& P = cur.polycube;
-          int inverted = 0, wrong_facing = 0;
-          for (const auto& c : cur.mesh.cells) {
-            const double det = (P[c[1]] - P[c[0]]).dot((P[c[2]] - P[c[0]]).cross(P[c[3]] - P[c[0]]));
-            if (det > 0) continue;
-            ++inverted;
-            for (int v : c) mark(v);
-          }
-          for (std::size_t f = 0; f < cur.boundary.size(); ++f) {
-            const auto& b = cur.boundary[f];
-            if (faces_label(P, b, cur.labels[f])) continue;
-            ++wrong_facing;
-            for (int v : b) mark(v);
-          }
-          cur_failures = inverted + wrong_facing + (cur.untangle.untangled ? 0 : 1);
-          done = cur.untangle.untangled && wrong_facing == 0;
-          if (!done)
-            failures += fmt::format("{}{}: {} tets stay inverted, {} boundary triangles face away from their label",
-                                    failures.empty() ? "" : "; ", what, cur.untangle.inverted_after, wrong_facing);
-        }
-        if (!done) {
-          const int n = penalize_around(bnd.surface, vertex_tris, rep.labels, std::move(bad), o.relabel_ring,
-                                        o.relabel_penalty, lopt.penalty);
-          log.info("construct: relabelling: penalized the labels of {} triangles", n);
-        }
-        if (!deformed) continue;
-        // Keep the attempt with the fewest inverted tets.
-        if (!have_def || done || cur_failures < def_failures) {
-          def = std::move(cur);
-          def_failures = cur_failures;
-          have_def = true;
-        }
-      }
-    }
+  core::logger().info("construct: attempt ({}): labeling valid ({} charts, estimate folds {} triangles)", attempt.name(),
+                      rep.check.layout.num_charts(), labeling.estimate.flipped.size());
+  try {
+    r.deformation = deform_to_polycube(model.mesh, model.tris, rep.labels, o.deform, pre ? &pre->points : nullptr);
+  } catch (const UnrealizableLabeling& e) {
+    r.failure = fmt::format("{}: {}", attempt.name(), e.what());
+    core::logger().info("construct: attempt ({}): {}", attempt.name(), e.what());
+    return r;
   }
-  if (!have_def)
-    throw core::SolverError("no valid polycube labeling reached: " + failures);
-  if (!done) log.warn("construct: every attempt left inverted tets ({})", failures);
-  res.split_triangles = def.split_triangles;
-  res.split_edges = def.split_edges;
-  res.refined_edges = def.refined_edges;
-  res.boundary_first = def.boundary_first;
-  res.inverted_after_linear = def.inverted_after_linear;
-  res.untangle = def.untangle;
-  res.predeform = std::move(pre);
-  res.predeform.points.clear();
+  const DeformResult& d = *r.deformation;
+  seconds.deform += d.seconds_linear;
+  seconds.untangle += d.seconds_untangle;
+  core::logger().info("construct: deformation {:.2f} s ({} inverted after the linear step), untangling {:.2f} s "
+                      "({} iterations, {} Newton steps, min det {:.3g}, {} inverted)",
+                      d.seconds_linear, d.inverted_after_linear, d.seconds_untangle, d.untangle.iterations,
+                      d.untangle.newton_steps, d.untangle.min_det, d.untangle.inverted_after);
+  judge(r);
+  return r;
+}
 
-  // Certification.
-  const auto t = Clock::now();
-  res.map.tets = def.mesh.cells;
-  res.map.model = def.mesh.points;
-  if (!res.axis_rotation.rotation.isIdentity()) {
-    const Eigen::Matrix3d back = res.axis_rotation.rotation.transpose();
-    for (std::size_t v = 0; v < res.map.model.size(); ++v)
-      res.map.model[v] = v < input.points.size() ? input.points[v] : core::Vec3(back * res.map.model[v]);
+//! Run the plan until an attempt is valid; keep the attempt with the fewest failures (the
+//! first valid one). `failures` lists why the others failed.
+std::optional<AttemptResult> run_plan(const std::vector<Attempt>& plan, const Model& model, const ConstructOptions& o,
+                                      const core::Stopwatch& clock, ConstructResult& res, std::string& failures) {
+  Predeformations predeformations(model, o, res.seconds);
+  std::optional<AttemptResult> kept;
+  bool retry_announced = false;
+  for (const Attempt& attempt : plan) {
+    if (res.attempts >= o.max_attempts) break;
+    if (res.attempts > 0 && o.time_limit > 0 && clock.seconds() > o.time_limit) {
+      append(failures, fmt::format("time limit of {:g} s reached after {} attempt(s)", o.time_limit, res.attempts));
+      break;
+    }
+    if (attempt.retry && !retry_announced) {
+      core::logger().info("construct: every attempt failed; again with a pre-deformation of {} iterations",
+                          attempt.predeform_iterations);
+      retry_announced = true;
+    }
+    ++res.attempts;
+    AttemptResult r = run_attempt(attempt, model, predeformations, o, res.seconds);
+    if (!r.failure.empty()) append(failures, r.failure);
+    if (r.deformation && (!kept || r.valid || r.failures < kept->failures)) kept = std::move(r);
+    if (kept && kept->valid) break;
   }
-  res.map.polycube = def.polycube;
-  res.certificate = certify_polycube_map(res.map, def.boundary, def.labels, o.certify);
-  if (!res.certificate.certified())
-    throw NotCertified("polycube map not certified: " + res.certificate.reason() +
-                           (failures.empty() ? std::string() : " (attempts: " + failures + ")"),
-                       res.map, def.boundary, def.labels);
+  return kept;
+}
 
-  // Boundary in core::boundary() order (the order of the written Triangles blocks).
-  const core::TetBoundary fb = core::boundary(def.mesh);
-  std::vector<std::pair<std::array<int, 3>, int>> keys(def.boundary.size());
-  for (std::size_t i = 0; i < def.boundary.size(); ++i) {
-    std::array<int, 3> k{def.boundary[i][0], def.boundary[i][1], def.boundary[i][2]};
+//! The map of a deformation, with the input's model positions (the deformation worked in the
+//! rotated frame; vertices it added are rotated back).
+core::PolycubeMap map_of(const DeformResult& d, const core::TetMesh& input, const AxisRotation& rotation) {
+  core::PolycubeMap map;
+  map.tets = d.mesh.cells;
+  map.model = d.mesh.points;
+  if (!rotation.rotation.isIdentity()) {
+    const Eigen::Matrix3d back = rotation.rotation.transpose();
+    for (std::size_t v = 0; v < map.model.size(); ++v)
+      map.model[v] = v < input.points.size() ? input.points[v] : core::Vec3(back * map.model[v]);
+  }
+  map.polycube = d.polycube;
+  return map;
+}
+
+//! The deformation's labeled boundary in core::boundary() order (the order of the written
+//! Triangles blocks), as a surface in the rotated frame where the labels are axes.
+core::TriMesh boundary_in_core_order(const DeformResult& d, std::vector<core::Tri>& boundary, std::vector<int>& labels) {
+  std::vector<std::pair<std::array<int, 3>, int>> keys(d.boundary.size());
+  for (std::size_t i = 0; i < d.boundary.size(); ++i) {
+    std::array<int, 3> k{d.boundary[i][0], d.boundary[i][1], d.boundary[i][2]};
     std::sort(k.begin(), k.end());
-    keys[i] = {k, def.labels[i]};
+    keys[i] = {k, d.labels[i]};
   }
   std::sort(keys.begin(), keys.end());
   core::TriMesh surface;
-  surface.points = def.mesh.points;  // the rotated frame, where the labels are axes
-  for (const auto& s : fb.surface.cells) {
-    const core::Tri tri{fb.vertex_map[s[0]], fb.vertex_map[s[1]], fb.vertex_map[s[2]]};
+  surface.points = d.mesh.points;
+  for (const core::Tri& tri : core::boundary_triangles(core::boundary(d.mesh))) {
     std::array<int, 3> k{tri[0], tri[1], tri[2]};
     std::sort(k.begin(), k.end());
     const auto it = std::lower_bound(keys.begin(), keys.end(), std::make_pair(k, -1));
     PC_REQUIRE(it != keys.end() && it->first == k, "construct: certified boundary lost a triangle");
-    res.boundary.push_back(tri);
-    res.labels.push_back(it->second);
+    boundary.push_back(tri);
+    labels.push_back(it->second);
     surface.cells.push_back(tri);
   }
+  return surface;
+}
+
+//! The figures of a certified map: its layout, the labeling's fidelity, its distortion.
+void describe(const DeformResult& d, const core::TriMesh& surface, ConstructResult& res) {
   const LabelingCheck check = check_labeling(surface, res.labels);
   res.charts = check.layout.num_charts();
   res.corners = static_cast<int>(check.layout.corners.size());
@@ -337,23 +288,76 @@ ConstructResult construct_from_prepared(const core::TetMesh& input, const Constr
   quality::DistortionOptions dopt;
   dopt.normalize_volume = true;
   dopt.keep_per_tet = false;
-  const quality::MapDistortion dist = quality::map_distortion(def.mesh, def.polycube, dopt);
+  const quality::MapDistortion dist = quality::map_distortion(d.mesh, d.polycube, dopt);
   res.isometric_average = dist.isometric.average;
   res.isometric_max = dist.isometric.max;
   res.conformal_average = dist.conformal.average;
   res.conformal_max = dist.conformal.max;
-  res.seconds.certify = since(t);
-  res.seconds.total = since(t0);
+}
+
+//! The kept attempt's figures into the report.
+void report_attempt(const AttemptResult& kept, ConstructResult& res) {
+  const DeformResult& d = *kept.deformation;
+  res.attempt = kept.attempt;
+  res.repair_moves = kept.repair_moves;
+  if (kept.predeform) res.predeform = *kept.predeform;
+  res.split_triangles = d.split_triangles;
+  res.split_edges = d.split_edges;
+  res.refined_edges = d.refined_edges;
+  res.boundary_first = d.boundary_first;
+  res.inverted_after_linear = d.inverted_after_linear;
+  res.untangle = d.untangle;
+}
+
+}  // namespace
+
+std::string Attempt::name() const {
+  return fmt::format("{}compactness {:.3g}", retry ? "pre-deformed, " : "", compactness);
+}
+
+std::vector<Attempt> plan_attempts(const ConstructOptions& o) {
+  std::vector<double> factors{1.0};
+  factors.insert(factors.end(), o.retry_compactness_factors.begin(), o.retry_compactness_factors.end());
+  std::vector<Attempt> plan;
+  for (double f : factors) plan.push_back({o.predeform.iterations, o.unfold_moves, o.labeling.compactness * f, false});
+  if (o.predeform.iterations == 0 && o.predeform_retry > 0)
+    for (double f : factors)
+      plan.push_back({o.predeform_retry, std::max(o.unfold_moves, o.predeform_retry_unfold_moves),
+                      o.labeling.compactness * f, true});
+  return plan;
+}
+
+ConstructResult construct_from_prepared(const core::TetMesh& input, const ConstructOptions& o) {
+  const core::Stopwatch clock;
+  ConstructResult res;
+  const Model model = rotated_model(input, o, res.axis_rotation);
+  std::string failures;
+  const std::optional<AttemptResult> kept = run_plan(plan_attempts(o), model, o, clock, res, failures);
+  if (!kept) throw core::SolverError("no valid polycube labeling reached: " + failures);
+  if (!kept->valid) core::logger().warn("construct: every attempt left inverted tets ({})", failures);
+  report_attempt(*kept, res);
+
+  const core::Stopwatch certify_clock;
+  const DeformResult& d = *kept->deformation;
+  res.map = map_of(d, input, res.axis_rotation);
+  res.certificate = certify_polycube_map(res.map, d.boundary, d.labels, o.certify);
+  if (!res.certificate.certified())
+    throw NotCertified("polycube map not certified: " + res.certificate.reason() +
+                           (failures.empty() ? std::string() : " (attempts: " + failures + ")"),
+                       res.map, d.boundary, d.labels);
+  describe(d, boundary_in_core_order(d, res.boundary, res.labels), res);
+  res.seconds.certify = certify_clock.seconds();
+  res.seconds.total = clock.seconds();
   return res;
 }
 
 ConstructResult construct_polycube(const core::TriMesh& surface, const ConstructOptions& o) {
-  const auto t0 = Clock::now();
+  const core::Stopwatch clock;
   TetrahedralizeResult tr = tetrahedralize(surface, o.tetrahedralize);
   if (o.tetrahedralize.max_volume == 0.0 && o.min_tets > 0 && tr.mesh.num_cells() < o.min_tets) {
     // Too coarse an interior leaves too little room to open a polycube corner where the
-    // model's surface is nearly flat (3holes: stuck tets at 7188 tets, certified at ~13500):
-    // bound the tet volume so that the volume alone asks for about min_tets tets.
+    // model's surface is nearly flat: bound the tet volume so that the volume alone asks for
+    // about min_tets tets.
     double volume = 0.0;
     for (const auto& c : tr.mesh.cells) {
       const auto& p = tr.mesh.points;
@@ -369,7 +373,7 @@ ConstructResult construct_polycube(const core::TriMesh& surface, const Construct
       tr = tetrahedralize(surface, finer);
     }
   }
-  const double t_tet = since(t0);
+  const double t_tet = clock.seconds();
   ConstructResult res = construct_from_prepared(tr.mesh, o);
   res.tetgen_tets = tr.tetgen_tets;
   res.refine = tr.refine;
@@ -379,10 +383,10 @@ ConstructResult construct_polycube(const core::TriMesh& surface, const Construct
 }
 
 ConstructResult construct_polycube(core::TetMesh mesh, const ConstructOptions& o) {
-  const auto t0 = Clock::now();
+  const core::Stopwatch clock;
   prepare_tet_mesh(mesh);
   const RefineStats refine = refine_boundary(mesh);
-  const double t_tet = since(t0);
+  const double t_tet = clock.seconds();
   ConstructResult res = construct_from_prepared(mesh, o);
   res.refine = refine;
   res.seconds.tetrahedralize = t_tet;

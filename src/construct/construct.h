@@ -21,52 +21,61 @@
 
 namespace polycube::construct {
 
-//! Options of construct_polycube().
+//! Options of construct_polycube(). The first group is what a user sets; the rest are expert
+//! settings of the steps (ARCHITECTURE §6.2), documented with the `construct --help-expert`
+//! options that bind them.
 struct ConstructOptions {
   TetrahedralizeOptions tetrahedralize;  //!< surface inputs only
+  LabelingOptions labeling;              //!< fidelity/compactness trade-off
   //! Normal-driven pre-deformation: the labeling reads the normals of the pre-deformed
   //! surface, and the deformation starts from its positions (iterations 0: off).
   PredeformOptions predeform;
+  //! Rotate the model so its normals cluster on the axes (orientation.h) before the labeling;
+  //! the map keeps the input's model positions, the polycube is in the rotated frame.
+  bool align_axes = true;
+  //! No new attempt starts after this many seconds (0: no limit; a running attempt finishes).
+  double time_limit = 0;
+
+  // Expert settings.
   //! When every attempt fails and `predeform` is off: run the attempts again with a
   //! pre-deformation of this many iterations (0: never) and at least
   //! `predeform_retry_unfold_moves` unfolding moves.
   int predeform_retry = 30;
   int predeform_retry_unfold_moves = 50;
-  //! Rotate the model so its normals cluster on the axes (orientation.h) before the labeling;
-  //! the map keeps the input's model positions, the polycube is in the rotated frame.
-  bool align_axes = true;
-  LabelingOptions labeling;              //!< fidelity/compactness trade-off
   RepairOptions repair;                  //!< its `energy` is replaced by `labeling`
   DeformOptions deform;
   CertifyOptions certify;
-  //! When the deformation leaves inverted tets, the labeling is computed again with the
+  //! When the deformation leaves failures, the labeling is computed again with the
   //! compactness multiplied by each of these factors in turn (empty: no retry).
   std::vector<double> retry_compactness_factors{2.0, 0.5};
-  //! Relabelling rounds per compactness: when tets stay inverted, the labels of the boundary
-  //! triangles within `relabel_ring` vertex rings of them (and of the boundary triangles that
-  //! face away from their label) get `relabel_penalty` more data cost, and the labeling,
-  //! repair and deformation run again.
-  int relabel_rounds = 0;
-  //! Labeling rounds steered by the fast polycube estimate (polycube_estimate.h) before each
-  //! deformation: while the estimate folds triangles, their labels are penalized the same way.
-  int estimate_rounds = 0;
   //! After the repair, at most this many local relabellings against the folds of the fast
-  //! polycube estimate (unfold_labeling(); 0: none). Off by default: on fandisk it trades one
-  //! certified map for a failing one; kept as an option to study.
+  //! polycube estimate (unfold_labeling(); 0: none). The pre-deformed retry uses at least
+  //! `predeform_retry_unfold_moves`; in the first attempts it can trade a certifiable
+  //! labeling for one that is not.
   int unfold_moves = 0;
   //! After the repair, at most this many local relabellings that remove backward steps of the
   //! chart boundaries (turning_points.h), measured on the pre-deformed surface when there is
   //! one (0: none).
   int straighten_moves = 0;
-  int relabel_ring = 2;             //!< vertex rings around the failures that are penalized
-  double relabel_penalty = 1.0;     //!< added per round, in units of a 90° misfit
   //! Surface inputs: when TetGen's mesh (without a volume bound) has fewer tets than this, the
   //! surface is tetrahedralized again with a volume bound asking for about this many (0: never).
   int min_tets = 10000;
   int max_attempts = 8;             //!< labeling + deformation runs in all, at most
-  //! No new attempt starts after this many seconds (0: no limit; a running attempt finishes).
-  double time_limit = 0;
 };
+
+//! One run of labeling, repair and deformation in construct's plan (see construct_from_prepared()).
+struct Attempt {
+  int predeform_iterations = 0;   //!< pre-deformation the labeling and the deformation start from (0: none)
+  int unfold_moves = 0;           //!< ConstructOptions::unfold_moves of this attempt
+  double compactness = 1.0;       //!< the labeling's compactness
+  bool retry = false;             //!< part of the pre-deformed retry (the first attempts all failed)
+  [[nodiscard]] std::string name() const;  //!< e.g. "pre-deformed, compactness 2"
+};
+
+//! The attempts construct runs, in order, until one gives a valid map: the compactness
+//! schedule (1, then the retry factors) on the options' labeling; then, when no
+//! pre-deformation was asked for, the same schedule on a pre-deformed labeling.
+std::vector<Attempt> plan_attempts(const ConstructOptions& options);
 
 //! Wall time of each stage (seconds).
 struct ConstructTimes {
@@ -96,8 +105,10 @@ struct ConstructResult {
   int corners = 0;                  //!< polycube corners
   int boundaries = 0;               //!< polycube edges (chart boundaries)
   double fidelity = 0;              //!< area-weighted mean of 1 − n·axis (model normals)
-  int repair_moves = 0;             //!< moves made by the labeling repair
-  PredeformResult predeform;        //!< figures of the pre-deformation (points cleared)
+  int repair_moves = 0;             //!< moves made by the labeling repair of the kept attempt
+  Attempt attempt;                  //!< the attempt whose map this is
+  int attempts = 0;                 //!< attempts run
+  PredeformResult predeform;        //!< figures of the kept attempt's pre-deformation (points cleared)
   AxisRotation axis_rotation;       //!< rotation applied before the labeling (identity: none)
   int inverted_after_linear = 0;    //!< tets inverted after the linear step (before untangling)
   solve::UntangleResult untangle;   //!< elliptic optimization report
@@ -134,7 +145,10 @@ ConstructResult construct_polycube(const core::TriMesh& surface, const Construct
 //! Same from a tet mesh (checked and oriented by prepare_tet_mesh, then refine_boundary).
 ConstructResult construct_polycube(core::TetMesh mesh, const ConstructOptions& options = {});
 
-//! Label, repair, deform and certify a prepared tet mesh (boundary refined, positively oriented).
+//! Label, repair, deform and certify a prepared tet mesh (boundary refined, positively
+//! oriented): the attempts of plan_attempts() in turn until one leaves a valid map (or the
+//! time limit or max_attempts is reached); the attempt with the fewest failures is kept and
+//! certified.
 //! \throw as construct_polycube
 ConstructResult construct_from_prepared(const core::TetMesh& mesh, const ConstructOptions& options = {});
 

@@ -5,9 +5,9 @@
 //! no inverted tet.
 //!
 //! Steps:
-//! 1. charts = edge-connected boundary triangles with one label; the coordinate of each chart
-//!    along its label's axis is one unknown shared by all its vertices (charts of one axis that
-//!    touch at a vertex share it too). These are exact constraints (solve::LinearReduction).
+//! 1. charts and chart groups (mapping/labeled_mesh.h): the coordinate of each chart along its
+//!    label's axis is one unknown shared by all its vertices (charts of one axis that touch at a
+//!    vertex share it too). These are exact constraints (solve::LinearReduction).
 //! 2. boundary edges inside a chart whose two ends are tied to one chart coordinate of an
 //!    in-plane axis (a chord joining two points of one polycube edge: the chart would have to
 //!    fold over that edge) are split at their midpoint, and boundary triangles whose three
@@ -15,18 +15,21 @@
 //!    this keeps the mesh conforming and positively oriented); then, at each polycube corner,
 //!    the edges opposite the corner in a chart's fan are split until the fan has
 //!    DeformOptions::min_fan triangles (a chart may have to open to 270° at a corner);
-//! 3. an as-rigid-as-possible least-squares solve (local rotations, one sparse factorization)
-//!    gives a first polycube;
-//! 4. the elliptic energy of Garanzha et al. 2021 (solve/untangle.h), with the model tets as
-//!    references, untangles it and then lowers the distortion while staying foldover-free;
-//!    when tets stay inverted, the edges of those tets are split (local refinement) and the
-//!    optimization restarts from the current positions (DeformOptions::refine_rounds).
+//! 3. the first polycube (mapping/first_polycube.h): as-rigid-as-possible least squares, or the
+//!    foldover-free planarity flow;
+//! 4. the repairs in order until one leaves a valid map (mapping/): the boundary-first
+//!    placement (by default first), the global elliptic untangling of Garanzha et al. 2021
+//!    with the model tets as references (it also lowers the distortion while staying
+//!    foldover-free), the local repair of what it leaves; when tets stay inverted, the edges of
+//!    those tets are split (local refinement) and the round restarts from the current positions
+//!    (DeformOptions::refine_rounds).
 //! The polycube coordinate of a chart vertex along the chart's axis equals the chart's unknown
 //! bit for bit.
 
-#include "construct/planarity_flow.h"
 #include "core/errors.h"
 #include "core/types.h"
+#include "mapping/first_polycube.h"
+#include "mapping/untangle_map.h"
 #include "solve/untangle.h"
 
 #include <string>
@@ -35,54 +38,42 @@
 
 namespace polycube::construct {
 
+//! When the boundary-first placement (mapping/boundary_first.h) is tried.
+enum class BoundaryFirst {
+  Off,           //!< never
+  AfterRepairs,  //!< when the global untangling and the local repairs leave failures
+  First,         //!< right after the first polycube; the untangling and the repairs are the fallback
+};
+
+//! The elliptic optimization's settings for a deformation: a small initial ε, since no
+//! coordinate is fixed (a large ε would make a shrunken polycube cheap); a small positive
+//! min det target, which keeps the exact certification away from round-off; and a stall rule,
+//! since stuck tets creep towards det 0 forever.
+solve::UntangleOptions deform_untangle_defaults();
+
 //! Options of deform_to_polycube().
 struct DeformOptions {
-  int arap_iterations = 15;        //!< local/global iterations of the first (linear) step
-  int max_iterations = 150;        //!< outer iterations of the elliptic optimization
-  int newton_steps = 2;            //!< Newton steps per outer iteration
-  double volume_weight = 1.0;      //!< λ of the elliptic energy (volume term)
-  //! Initial ε of the elliptic energy: small, since no coordinate is fixed (a large ε would
-  //! make a shrunken polycube cheap).
-  double initial_epsilon = 0.05;
-  double tolerance = 1e-4;         //!< relative energy decrease that stops the optimization
-  //! Minimum det J (relative to the model tet) that counts as untangled: a small positive
-  //! margin keeps the exact certification away from round-off.
-  double min_det = 1e-6;
-  //! When tets stay inverted, split the edges of those tets and optimize again, at most this
-  //! many times.
-  int refine_rounds = 1;
-  //! The untangling gives up when, for 20 outer iterations, the inverted tets neither get
-  //! fewer nor their min det rises by this much (stuck tets creep towards det 0 forever).
-  double stall_min_det_rise = 0.005;
-  //! At every polycube corner, split boundary edges until each chart's fan around the corner
-  //! has at least this many triangles (0 or 1: never), so a chart can open to 270° there.
-  int min_fan = 4;
-  //! Height of the ghost tets (one per boundary triangle, apex above its chart plane; they
-  //! keep the boundary from folding over itself), as a fraction of the mean boundary edge
-  //! length; 0 = no ghost tets.
-  double ghost_height = 0.5;
-  //! First polycube by the foldover-free planarity flow (planarity_flow.h) instead of the
-  //! as-rigid-as-possible least squares.
-  bool flow = false;
-  //! When the untangling leaves failures, first place the chart fans that stayed flipped at
-  //! concave corners on their long sweep (corner_fans.h), then untangle locally.
-  bool reopen_fans = true;
-  //! When the local repairs leave failures, build the polycube boundary first (edge chains
-  //! straight between their corners, charts untangled in 2D inside them), then the volume with
-  //! the boundary fixed (boundary_first.h).
-  bool boundary_first = true;
+  mapping::FirstPolycubeOptions first;                     //!< step 3
+  solve::UntangleOptions untangle = deform_untangle_defaults();  //!< step 4
+  mapping::LocalRepairOptions local_repair;                //!< when the untangling leaves failures
+  BoundaryFirst boundary_first = BoundaryFirst::First;
   //! When the boundary-first placement leaves tets inverted, split their edges and place
   //! again, at most this many times.
   int boundary_first_refinements = 3;
-  //! Place the boundary first right after the first polycube (the free-boundary untangling,
-  //! then the local repairs, are the fallback when it fails); false: only after them.
-  bool boundary_first_start = true;
   //! The free-boundary optimization after a valid boundary-first placement stops at this
-  //! fraction of `tolerance` (the energy is dominated by the many good tets while the few bad
-  //! ones still improve), after at most this many outer iterations.
+  //! fraction of `untangle.tolerance` (the energy is dominated by the many good tets while the
+  //! few bad ones still improve), after at most this many outer iterations.
   double boundary_first_relax_tolerance = 0.01;
   int boundary_first_relax_iterations = 40;
-  PlanarityFlowOptions flow_options;
+  //! When tets stay inverted, split the edges of those tets and optimize again, at most this
+  //! many times.
+  int refine_rounds = 1;
+  //! At every polycube corner, split boundary edges until each chart's fan around the corner
+  //! has at least this many triangles (0 or 1: never), so a chart can open to 270° there.
+  int min_fan = 4;
+  //! Height of the ghost tets (mapping/ghost_tets.h) as a fraction of the mean boundary edge
+  //! length; 0 = no ghost tets (and no boundary-first placement).
+  double ghost_height = 0.5;
 };
 
 //! Result of deform_to_polycube().

@@ -21,23 +21,6 @@ constexpr double kCandidateDot = -0.2;
 
 }  // namespace
 
-core::Vec3 label_direction(int label) {
-  PC_REQUIRE(label >= 0 && label < kNumLabels, "label out of range");
-  core::Vec3 d = core::Vec3::Zero();
-  d[label_axis(label)] = (label % 2 == 0) ? 1.0 : -1.0;
-  return d;
-}
-
-bool faces_label(const std::vector<core::Vec3>& P, const core::Tri& t, int label) {
-  return (P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]).dot(label_direction(label)) > 0;
-}
-
-const char* label_name(int label) {
-  static constexpr const char* kNames[kNumLabels] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
-  PC_REQUIRE(label >= 0 && label < kNumLabels, "label out of range");
-  return kNames[label];
-}
-
 int smooth_chart_boundaries(const core::TriMesh& surface, std::vector<int>& labels, int max_rounds) {
   PC_REQUIRE(labels.size() == surface.cells.size(), "smooth_chart_boundaries: one label per triangle");
   const SurfaceGraph g = detail::build_surface_graph(surface);

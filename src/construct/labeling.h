@@ -6,6 +6,7 @@
 //! A labeling is one value per boundary triangle in {0..5} = {+X, −X, +Y, −Y, +Z, −Z}
 //! (ARCHITECTURE §4): label l has axis l / 2 and sign + when l is even.
 
+#include "core/polycube_map.h"
 #include "core/types.h"
 
 #include <array>
@@ -15,16 +16,12 @@ namespace polycube::construct {
 
 inline constexpr int kNumLabels = 6;
 
-//! Axis of a label (0 = X, 1 = Y, 2 = Z).
-constexpr int label_axis(int label) { return label / 2; }
-//! The label of the opposite direction (+X <-> −X, ...).
-constexpr int opposite_label(int label) { return label ^ 1; }
-//! Unit direction of a label.
-core::Vec3 label_direction(int label);
-//! Triangle t (indices into P) faces the direction of `label` (strictly) in positions P.
-bool faces_label(const std::vector<core::Vec3>& P, const core::Tri& t, int label);
-//! "+X", "-X", "+Y", "-Y", "+Z", "-Z".
-const char* label_name(int label);
+// The label conventions live in core (core/polycube_map.h); construct code names them here.
+using core::faces_label;
+using core::label_axis;
+using core::label_direction;
+using core::label_name;
+using core::opposite_label;
 
 //! Options of graph_cut_labeling().
 struct LabelingOptions {

@@ -7,6 +7,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace polycube::construct {
 
@@ -29,14 +32,20 @@ LabelingCheck check_labeling(const core::TriMesh& surface, const std::vector<int
   return detail::check_labeling(detail::build_surface_graph(surface), labels, true);
 }
 
-namespace detail {
+namespace {
 
-LabelingCheck check_labeling(const SurfaceGraph& g, const std::vector<int>& labels,
-                             bool with_reasons) {
-  LabelingCheck out;
-  ChartLayout& L = out.layout;
+//! What the rules read besides the layout: which edges separate two charts, the distinct chart
+//! pairs they separate, and the number of such edges at each vertex.
+struct ChartBoundaryEdges {
+  std::vector<char> is_boundary;             //!< #E 1 when the edge separates two charts
+  std::vector<std::pair<int, int>> pairs;    //!< sorted, unique (smaller chart, larger chart)
+  std::vector<int> valence;                  //!< #V boundary edges at each vertex
+};
+
+//! Charts: flood fill across edges with equal labels, seeded in triangle order (chart ids are
+//! therefore in order of their first triangle).
+void find_charts(const detail::SurfaceGraph& g, const std::vector<int>& labels, ChartLayout& L) {
   const int nt = g.num_triangles;
-  // Charts: flood fill across edges with equal labels.
   L.triangle_chart.assign(static_cast<std::size_t>(nt), -1);
   std::vector<int> stack;
   for (int seed = 0; seed < nt; ++seed) {
@@ -61,49 +70,61 @@ LabelingCheck check_labeling(const SurfaceGraph& g, const std::vector<int>& labe
       }
     }
   }
-  // Chart adjacency and boundary edges.
+}
+
+//! Chart adjacency (L.chart_neighbors) and the chart-boundary edges.
+ChartBoundaryEdges find_chart_adjacency(const detail::SurfaceGraph& g, ChartLayout& L) {
+  ChartBoundaryEdges b;
   const int ne = static_cast<int>(g.edges.size());
-  std::vector<char> is_bedge(static_cast<std::size_t>(ne), 0);
-  std::vector<std::pair<int, int>> pairs;
+  b.is_boundary.assign(static_cast<std::size_t>(ne), 0);
   for (int e = 0; e < ne; ++e) {
     const int c0 = L.triangle_chart[g.edge_triangles[e][0]];
     const int c1 = L.triangle_chart[g.edge_triangles[e][1]];
     if (c0 == c1) continue;
-    is_bedge[e] = 1;
-    pairs.emplace_back(std::min(c0, c1), std::max(c0, c1));
+    b.is_boundary[e] = 1;
+    b.pairs.emplace_back(std::min(c0, c1), std::max(c0, c1));
   }
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  std::sort(b.pairs.begin(), b.pairs.end());
+  b.pairs.erase(std::unique(b.pairs.begin(), b.pairs.end()), b.pairs.end());
   L.chart_neighbors.assign(static_cast<std::size_t>(L.num_charts()), {});
-  for (const auto& [a, b] : pairs) {
-    L.chart_neighbors[a].push_back(b);
-    L.chart_neighbors[b].push_back(a);
+  for (const auto& [c0, c1] : b.pairs) {
+    L.chart_neighbors[c0].push_back(c1);
+    L.chart_neighbors[c1].push_back(c0);
   }
   for (auto& n : L.chart_neighbors) std::sort(n.begin(), n.end());
+  return b;
+}
 
-  // Valence of vertices.
-  std::vector<int> valence(static_cast<std::size_t>(g.num_vertices), 0);
+//! Valence of every vertex (b.valence) and the corners, the vertices of valence >= 3 (L.corners).
+void find_corners(const detail::SurfaceGraph& g, ChartBoundaryEdges& b, ChartLayout& L) {
+  b.valence.assign(static_cast<std::size_t>(g.num_vertices), 0);
+  const int ne = static_cast<int>(g.edges.size());
   for (int e = 0; e < ne; ++e)
-    if (is_bedge[e]) {
-      ++valence[g.edges[e][0]];
-      ++valence[g.edges[e][1]];
+    if (b.is_boundary[e]) {
+      ++b.valence[g.edges[e][0]];
+      ++b.valence[g.edges[e][1]];
     }
   for (int v = 0; v < g.num_vertices; ++v)
-    if (valence[v] >= 3) L.corners.push_back(v);
+    if (b.valence[v] >= 3) L.corners.push_back(v);
+}
 
-  // Boundaries: chains between corners.
+//! Number of chart boundaries: each unvisited boundary edge starts one, which is walked both
+//! ways through vertices of valence 2 until a corner (or the start, for a closed chain).
+int count_boundaries(const detail::SurfaceGraph& g, const ChartBoundaryEdges& b) {
+  const int ne = static_cast<int>(g.edges.size());
   std::vector<char> seen(static_cast<std::size_t>(ne), 0);
+  int count = 0;
   for (int e0 = 0; e0 < ne; ++e0) {
-    if (!is_bedge[e0] || seen[e0]) continue;
-    ++L.num_boundaries;
+    if (!b.is_boundary[e0] || seen[e0]) continue;
+    ++count;
     seen[e0] = 1;
     for (int side = 0; side < 2; ++side) {
       int v = g.edges[e0][side];
       int e = e0;
-      while (valence[v] == 2) {
+      while (b.valence[v] == 2) {
         int next = -1;
         for (const int f : g.vertex_edges[v])
-          if (f != e && is_bedge[f]) next = f;
+          if (f != e && b.is_boundary[f]) next = f;
         if (next < 0 || seen[next]) break;
         seen[next] = 1;
         e = next;
@@ -111,8 +132,11 @@ LabelingCheck check_labeling(const SurfaceGraph& g, const std::vector<int>& labe
       }
     }
   }
+  return count;
+}
 
-  // Rule 1: at least 4 neighbouring charts.
+//! Rule 1: at least 4 neighbouring charts.
+void check_neighbor_counts(const ChartLayout& L, bool with_reasons, std::vector<Defect>& defects) {
   for (int c = 0; c < L.num_charts(); ++c) {
     const int k = static_cast<int>(L.chart_neighbors[c].size());
     if (k >= 4) continue;
@@ -120,24 +144,42 @@ LabelingCheck check_labeling(const SurfaceGraph& g, const std::vector<int>& labe
     if (with_reasons)
       d.reason = fmt::format("chart {} ({}, {} triangles) has {} neighbouring chart(s), needs at least 4",
                              c, label_name(L.chart_label[c]), L.chart_triangles[c], k);
-    out.defects.push_back(std::move(d));
+    defects.push_back(std::move(d));
   }
-  // Rule 2: no opposite labels across a boundary.
-  for (const auto& [a, b] : pairs) {
-    if (L.chart_label[a] != opposite_label(L.chart_label[b])) continue;
-    Defect d{DefectKind::OppositeNeighbors, {a, b}, -1, {}};
+}
+
+//! Rule 2: no opposite labels across a boundary.
+void check_opposite_neighbors(const ChartLayout& L, const ChartBoundaryEdges& b, bool with_reasons,
+                              std::vector<Defect>& defects) {
+  for (const auto& [c0, c1] : b.pairs) {
+    if (L.chart_label[c0] != opposite_label(L.chart_label[c1])) continue;
+    Defect d{DefectKind::OppositeNeighbors, {c0, c1}, -1, {}};
     if (with_reasons)
       d.reason = fmt::format("charts {} ({}) and {} ({}) have opposite labels and share a boundary",
-                             a, label_name(L.chart_label[a]), b, label_name(L.chart_label[b]));
-    out.defects.push_back(std::move(d));
+                             c0, label_name(L.chart_label[c0]), c1, label_name(L.chart_label[c1]));
+    defects.push_back(std::move(d));
   }
-  // Rule 3: corners of valence 3 with three distinct charts of distinct axes.
+}
+
+//! Why the corner at vertex v, of the given valence and sorted distinct charts, is invalid.
+std::string corner_reason(const ChartLayout& L, int v, int valence, const std::vector<int>& charts) {
+  std::string names;
+  for (const int c : charts)
+    names += fmt::format("{}{} ({})", names.empty() ? "" : ", ", c, label_name(L.chart_label[c]));
+  if (valence != 3) return fmt::format("corner at vertex {} has valence {} (needs 3); charts: {}", v, valence, names);
+  if (charts.size() != 3) return fmt::format("corner at vertex {} joins a chart twice; charts: {}", v, names);
+  return fmt::format("corner at vertex {} joins charts with a repeated axis: {}", v, names);
+}
+
+//! Rule 3: corners of valence 3 with three distinct charts of distinct axes.
+void check_corners(const detail::SurfaceGraph& g, const ChartLayout& L, const ChartBoundaryEdges& b,
+                   bool with_reasons, std::vector<Defect>& defects) {
   for (const int v : L.corners) {
     std::vector<int> charts;
     for (const int t : g.vertex_triangles[v]) charts.push_back(L.triangle_chart[t]);
     std::sort(charts.begin(), charts.end());
     charts.erase(std::unique(charts.begin(), charts.end()), charts.end());
-    bool ok = valence[v] == 3 && charts.size() == 3;
+    bool ok = b.valence[v] == 3 && charts.size() == 3;
     if (ok) {
       const int a0 = label_axis(L.chart_label[charts[0]]);
       const int a1 = label_axis(L.chart_label[charts[1]]);
@@ -146,19 +188,27 @@ LabelingCheck check_labeling(const SurfaceGraph& g, const std::vector<int>& labe
     }
     if (ok) continue;
     Defect d{DefectKind::InvalidCorner, charts, v, {}};
-    if (with_reasons) {
-      std::string names;
-      for (const int c : charts)
-        names += fmt::format("{}{} ({})", names.empty() ? "" : ", ", c, label_name(L.chart_label[c]));
-      d.reason = valence[v] != 3
-                     ? fmt::format("corner at vertex {} has valence {} (needs 3); charts: {}", v,
-                                   valence[v], names)
-                 : charts.size() != 3
-                     ? fmt::format("corner at vertex {} joins a chart twice; charts: {}", v, names)
-                     : fmt::format("corner at vertex {} joins charts with a repeated axis: {}", v, names);
-    }
-    out.defects.push_back(std::move(d));
+    if (with_reasons) d.reason = corner_reason(L, v, b.valence[v], charts);
+    defects.push_back(std::move(d));
   }
+}
+
+}  // namespace
+
+namespace detail {
+
+LabelingCheck check_labeling(const SurfaceGraph& g, const std::vector<int>& labels,
+                             bool with_reasons) {
+  LabelingCheck out;
+  ChartLayout& L = out.layout;
+  find_charts(g, labels, L);
+  ChartBoundaryEdges b = find_chart_adjacency(g, L);
+  find_corners(g, b, L);
+  L.num_boundaries = count_boundaries(g, b);
+  // Defects ordered by rule, as LabelingCheck::defects promises.
+  check_neighbor_counts(L, with_reasons, out.defects);
+  check_opposite_neighbors(L, b, with_reasons, out.defects);
+  check_corners(g, L, b, with_reasons, out.defects);
   return out;
 }
 

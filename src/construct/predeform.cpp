@@ -1,6 +1,7 @@
 //! Normal-driven pre-deformation (see predeform.h).
 #include "construct/predeform.h"
 
+#include "core/stopwatch.h"
 #include "core/errors.h"
 #include "core/log.h"
 #include "solve/rotation.h"
@@ -12,7 +13,6 @@
 #include <Eigen/SparseCore>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 namespace polycube::construct {
@@ -20,7 +20,6 @@ namespace polycube::construct {
 namespace {
 
 using core::Vec3;
-using Clock = std::chrono::steady_clock;
 
 
 //! The axis direction (±e_d) closest to n.
@@ -77,7 +76,7 @@ std::vector<Vec3> triangle_normals(const std::vector<Vec3>& points, const std::v
 
 PredeformResult predeform(const core::TetMesh& mesh, const std::vector<core::Tri>& boundary,
                           const PredeformOptions& o) {
-  const auto t0 = Clock::now();
+  const core::Stopwatch clock;
   PredeformResult res;
   res.points = mesh.points;
   std::vector<Vec3>& X = res.points;
@@ -168,7 +167,7 @@ PredeformResult predeform(const core::TetMesh& mesh, const std::vector<core::Tri
   }
   for (const auto& c : mesh.cells)
     res.inverted += !core::positive_tet(X, c);
-  res.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  res.seconds = clock.seconds();
   return res;
 }
 

@@ -2,6 +2,8 @@
 
 #include "core/errors.h"
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <string>
 
@@ -26,6 +28,17 @@ std::string tet_string(const Tet& t) {
 const char* label_name(int label) {
   static constexpr const char* kNames[6] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
   return (label >= 0 && label < 6) ? kNames[label] : "?";
+}
+
+Vec3 label_direction(int label) {
+  PC_REQUIRE(label >= 0 && label < 6, "label out of range");
+  Vec3 d = Vec3::Zero();
+  d[label_axis(label)] = (label % 2 == 0) ? 1.0 : -1.0;
+  return d;
+}
+
+bool faces_label(const std::vector<Vec3>& P, const Tri& t, int label) {
+  return (P[t[1]] - P[t[0]]).cross(P[t[2]] - P[t[0]]).dot(label_direction(label)) > 0;
 }
 
 int dominant_axis_label(const Vec3& n) {

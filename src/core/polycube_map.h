@@ -38,6 +38,14 @@ constexpr int label_sign(int label) { return (label % 2 == 0) ? 1 : -1; }
 //! "+X", "-X", "+Y", "-Y", "+Z", "-Z" (or "?" outside 0..5).
 const char* label_name(int label);
 
+//! The label of the opposite direction (+X <-> -X, ...).
+constexpr int opposite_label(int label) { return label ^ 1; }
+//! Unit direction of a label (0..5).
+Vec3 label_direction(int label);
+//! Triangle t (indices into P) faces the direction of `label` strictly in positions P: its
+//! normal has a positive component along the label's direction.
+bool faces_label(const std::vector<Vec3>& P, const Tri& t, int label);
+
 //! Label of the axis closest to a direction: the dominant component of n and its sign
 //! (ties go to the lower axis). A zero vector gives +X.
 int dominant_axis_label(const Vec3& n);

@@ -610,6 +610,15 @@ Adjacency cell_cells(const Mesh<T>& m) {
 
 // --- boundary and components ------------------------------------------------------------------
 
+std::vector<Tri> boundary_triangles(const TetBoundary& b) {
+  std::vector<Tri> tris(b.surface.cells.size());
+  for (std::size_t f = 0; f < tris.size(); ++f) {
+    const Tri& s = b.surface.cells[f];
+    tris[f] = {b.vertex_map[s[0]], b.vertex_map[s[1]], b.vertex_map[s[2]]};
+  }
+  return tris;
+}
+
 TetBoundary boundary(const TetMesh& m) {
   check_indices(m);
   const Grouping g = group_faces(m);

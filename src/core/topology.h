@@ -198,6 +198,9 @@ struct HexBoundary {
 //! \throw GeometryError when a face is shared by more than two cells
 //! \throw InputError on out-of-range indices
 TetBoundary boundary(const TetMesh& m);
+
+//! The boundary triangles of `b` in volume vertex indices (outward, in `b`'s face order).
+std::vector<Tri> boundary_triangles(const TetBoundary& b);
 HexBoundary boundary(const HexMesh& m);
 
 // --- components -------------------------------------------------------------------------------

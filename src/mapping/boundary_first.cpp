@@ -1,9 +1,10 @@
 //! Boundary-first placement of a polycube map (see boundary_first.h).
-#include "construct/boundary_first.h"
-#include "construct/labeling.h"
+#include "mapping/boundary_first.h"
 
 #include "core/errors.h"
 #include "core/log.h"
+#include "core/polycube_map.h"
+#include "mapping/ghost_tets.h"
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
@@ -12,7 +13,7 @@
 #include <array>
 #include <map>
 
-namespace polycube::construct {
+namespace polycube::mapping {
 
 namespace {
 
@@ -45,7 +46,7 @@ int place_chains(const std::vector<Vec3>& points, const std::vector<Tri>& tris, 
     }
     if (l[0] == l[1]) continue;
     if (l[0] / 2 == l[1] / 2) {
-      reason = fmt::format("charts {} and {} of one axis share an edge", label_name(l[0]), label_name(l[1]));
+      reason = fmt::format("charts {} and {} of one axis share an edge", core::label_name(l[0]), core::label_name(l[1]));
       return -1;
     }
     feature[e.first].push_back(e.second);
@@ -114,6 +115,110 @@ solve::UntangleOptions fixed_boundary_options(const solve::UntangleOptions& base
   return uo;
 }
 
+//! Step 2: each chart inside its fixed rectilinear polygon by a fixed-boundary 2D untangling:
+//! the in-plane coordinates of chart-interior vertices are free; each triangle is lifted to a
+//! tet whose apex has its first vertex's in-plane coordinates and lies at h above the chart
+//! plane. Returns false with res.reason set when a chart triangle stays facing away.
+bool place_charts(const std::vector<Vec3>& points, const std::vector<Tri>& tris, const std::vector<int>& labels,
+                  const std::vector<int>& vertex_group, const std::vector<char>& on_boundary, double h,
+                  const solve::UntangleOptions& base, std::vector<Vec3>& Q, BoundaryFirstResult& res) {
+  const int nv = static_cast<int>(points.size());
+  const int nb = static_cast<int>(tris.size());
+  std::vector<int> var(3 * static_cast<std::size_t>(nv + nb), -1);
+  Eigen::VectorXd fixed(3 * (nv + nb));
+  int n = 0;
+  for (int v = 0; v < nv; ++v) {
+    const int mask = on_boundary[v] ? axes_mask(vertex_group, v) : 7;
+    for (int d = 0; d < 3; ++d) {
+      fixed[3 * v + d] = Q[v][d];
+      if (mask == (mask & -mask) && !(mask & (1 << d))) var[3 * static_cast<std::size_t>(v) + d] = n++;
+    }
+  }
+  const GhostTets lifted = ghost_tets(points, tris, labels, h, nv, GhostBase::FirstVertex);
+  std::vector<Vec3> ref = points;
+  ref.insert(ref.end(), lifted.reference.begin(), lifted.reference.end());
+  for (int f = 0; f < nb; ++f) {
+    const Tri& t = tris[f];
+    const int a = labels[f] / 2;
+    const Vec3 apex = ghost_apex(Q, t, labels[f], h, GhostBase::FirstVertex);
+    for (int d = 0; d < 3; ++d) {
+      const std::size_t row = 3 * static_cast<std::size_t>(nv + f) + d;
+      fixed[static_cast<Eigen::Index>(row)] = apex[d];
+      if (d != a) var[row] = var[3 * static_cast<std::size_t>(t[0]) + d];
+    }
+    bool locked = true;
+    for (int v : t) locked = locked && axes_mask(vertex_group, v) != (1 << a);
+    if (locked && !core::faces_label(Q, t, labels[f])) ++res.locked_inverted;
+  }
+  if (res.locked_inverted > 0) {
+    res.reason = fmt::format("{} chart triangles with all vertices on polycube edges face away", res.locked_inverted);
+    return false;
+  }
+  const solve::LinearReduction R = solve::index_reduction(var, n, fixed);
+  Eigen::VectorXd y(n);
+  for (std::size_t i = 0; i < 3 * static_cast<std::size_t>(nv); ++i)
+    if (var[i] >= 0) y[var[i]] = Q[i / 3][i % 3];
+  res.chart_step = solve::untangle(solve::reference_elements(ref, lifted.tets), R, y, fixed_boundary_options(base));
+  const Eigen::VectorXd x = R.apply(y);
+  for (int v = 0; v < nv; ++v)
+    if (on_boundary[v]) Q[v] = x.segment<3>(3 * v);
+  for (int f = 0; f < nb; ++f) res.charts_inverted += !core::faces_label(Q, tris[f], labels[f]);
+  if (res.charts_inverted > 0) {
+    res.reason = fmt::format("{} chart triangles face away after the 2D untangling", res.charts_inverted);
+    return false;
+  }
+  return true;
+}
+
+//! Step 3: the interior untangled with the whole boundary fixed. Returns false with
+//! res.reason set (and res.placement when only tets stay inverted) on failure.
+bool place_volume(const std::vector<Vec3>& points, const std::vector<core::Tet>& tets,
+                  const std::vector<int>& vertex_group, const std::vector<char>& on_boundary,
+                  const solve::UntangleOptions& base, std::vector<Vec3>& Q, BoundaryFirstResult& res) {
+  const int nv = static_cast<int>(points.size());
+  std::vector<int> var(3 * static_cast<std::size_t>(nv), -1);
+  int n = 0;
+  for (int v = 0; v < nv; ++v)
+    if (!on_boundary[v])
+      for (int d = 0; d < 3; ++d) var[3 * static_cast<std::size_t>(v) + d] = n++;
+  for (const auto& c : tets)
+    if (on_boundary[c[0]] && on_boundary[c[1]] && on_boundary[c[2]] && on_boundary[c[3]] && !core::positive_tet(Q, c))
+      ++res.locked_inverted;
+  if (res.locked_inverted > 0) {
+    res.reason = fmt::format("{} tets with all vertices on the boundary are inverted", res.locked_inverted);
+    return false;
+  }
+  const solve::LinearReduction R = solve::index_reduction(var, n, solve::flatten(Q));
+  Eigen::VectorXd y(n);
+  for (std::size_t i = 0; i < var.size(); ++i)
+    if (var[i] >= 0) y[var[i]] = Q[i / 3][i % 3];
+  res.volume_step = solve::untangle(solve::reference_elements(points, tets), R, y, fixed_boundary_options(base));
+  const Eigen::VectorXd x = R.apply(y);
+  for (int v = 0; v < nv; ++v)
+    if (!on_boundary[v]) Q[v] = x.segment<3>(3 * v);
+  for (const auto& c : tets) {
+    if (core::positive_tet(Q, c)) continue;
+    ++res.tets_inverted;
+    if (res.tets_inverted <= 10) {
+      int nb_v = 0;
+      std::string masks;
+      for (int v : c) {
+        nb_v += on_boundary[v];
+        masks += fmt::format(" {}:{}", v, on_boundary[v] ? axes_mask(vertex_group, v) : 0);
+      }
+      const double vol = (Q[c[1]] - Q[c[0]]).dot((Q[c[2]] - Q[c[0]]).cross(Q[c[3]] - Q[c[0]])) / 6.0;
+      core::logger().debug("boundary first: tet inverted, volume {:.3g}, {} boundary vertices (vertex:axes{})", vol,
+                           nb_v, masks);
+    }
+  }
+  if (res.tets_inverted > 0) {
+    res.reason = fmt::format("{} tets stay inverted after the volume untangling", res.tets_inverted);
+    res.placement = std::move(Q);
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 BoundaryFirstResult place_boundary_first(const std::vector<Vec3>& points, const std::vector<core::Tet>& tets,
@@ -122,7 +227,6 @@ BoundaryFirstResult place_boundary_first(const std::vector<Vec3>& points, const 
                                          const solve::UntangleOptions& base, double h) {
   BoundaryFirstResult res;
   const int nv = static_cast<int>(points.size());
-  const int nb = static_cast<int>(tris.size());
   PC_REQUIRE(P.size() == points.size() && vertex_group.size() == 3 * points.size() && labels.size() == tris.size(),
              "place_boundary_first: inconsistent sizes");
   PC_REQUIRE(h > 0, "place_boundary_first: the apex height must be positive");
@@ -130,107 +234,14 @@ BoundaryFirstResult place_boundary_first(const std::vector<Vec3>& points, const 
   res.chains = place_chains(points, tris, labels, vertex_group, Q, res.reason);
   if (res.chains < 0) return res;
 
-  // 2. Charts: the in-plane coordinates of chart-interior vertices are free; each triangle is
-  //    lifted to a tet whose apex has its first vertex's in-plane coordinates and lies at h
-  //    above the chart plane.
   std::vector<char> on_boundary(static_cast<std::size_t>(nv), 0);
   for (const Tri& t : tris)
     for (int v : t) on_boundary[v] = 1;
-  {
-    std::vector<int> var(3 * static_cast<std::size_t>(nv + nb), -1);
-    Eigen::VectorXd fixed(3 * (nv + nb));
-    int n = 0;
-    for (int v = 0; v < nv; ++v) {
-      const int mask = on_boundary[v] ? axes_mask(vertex_group, v) : 7;
-      for (int d = 0; d < 3; ++d) {
-        fixed[3 * v + d] = Q[v][d];
-        if (mask == (mask & -mask) && !(mask & (1 << d))) var[3 * static_cast<std::size_t>(v) + d] = n++;
-      }
-    }
-    std::vector<Vec3> ref = points;
-    std::vector<core::Tet> lifted;
-    lifted.reserve(static_cast<std::size_t>(nb));
-    for (int f = 0; f < nb; ++f) {
-      const Tri& t = tris[f];
-      const int a = labels[f] / 2;
-      const double sign = labels[f] % 2 == 0 ? 1.0 : -1.0;
-      const Vec3 nrm = (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).normalized();
-      ref.push_back(points[t[0]] + h * nrm);
-      lifted.push_back({t[0], t[1], t[2], nv + f});
-      for (int d = 0; d < 3; ++d) {
-        const std::size_t row = 3 * static_cast<std::size_t>(nv + f) + d;
-        fixed[static_cast<Eigen::Index>(row)] = d == a ? Q[t[0]][d] + sign * h : Q[t[0]][d];
-        if (d != a) var[row] = var[3 * static_cast<std::size_t>(t[0]) + d];
-      }
-      bool locked = true;
-      for (int v : t) locked = locked && axes_mask(vertex_group, v) != (1 << a);
-      if (locked && !faces_label(Q, t, labels[f])) ++res.locked_inverted;
-    }
-    if (res.locked_inverted > 0) {
-      res.reason = fmt::format("{} chart triangles with all vertices on polycube edges face away", res.locked_inverted);
-      return res;
-    }
-    const solve::LinearReduction R = solve::index_reduction(var, n, fixed);
-    Eigen::VectorXd y(n);
-    for (std::size_t i = 0; i < 3 * static_cast<std::size_t>(nv); ++i)
-      if (var[i] >= 0) y[var[i]] = Q[i / 3][i % 3];
-    res.chart_step = solve::untangle(solve::reference_elements(ref, lifted), R, y, fixed_boundary_options(base));
-    const Eigen::VectorXd x = R.apply(y);
-    for (int v = 0; v < nv; ++v)
-      if (on_boundary[v]) Q[v] = x.segment<3>(3 * v);
-    for (int f = 0; f < nb; ++f) res.charts_inverted += !faces_label(Q, tris[f], labels[f]);
-    if (res.charts_inverted > 0) {
-      res.reason = fmt::format("{} chart triangles face away after the 2D untangling", res.charts_inverted);
-      return res;
-    }
-  }
-
-  // 3. Volume: the boundary fixed, the interior free.
-  {
-    std::vector<int> var(3 * static_cast<std::size_t>(nv), -1);
-    int n = 0;
-    for (int v = 0; v < nv; ++v)
-      if (!on_boundary[v])
-        for (int d = 0; d < 3; ++d) var[3 * static_cast<std::size_t>(v) + d] = n++;
-    for (const auto& c : tets)
-      if (on_boundary[c[0]] && on_boundary[c[1]] && on_boundary[c[2]] && on_boundary[c[3]] && !core::positive_tet(Q, c))
-        ++res.locked_inverted;
-    if (res.locked_inverted > 0) {
-      res.reason = fmt::format("{} tets with all vertices on the boundary are inverted", res.locked_inverted);
-      return res;
-    }
-    const solve::LinearReduction R = solve::index_reduction(var, n, solve::flatten(Q));
-    Eigen::VectorXd y(n);
-    for (std::size_t i = 0; i < var.size(); ++i)
-      if (var[i] >= 0) y[var[i]] = Q[i / 3][i % 3];
-    res.volume_step = solve::untangle(solve::reference_elements(points, tets), R, y, fixed_boundary_options(base));
-    const Eigen::VectorXd x = R.apply(y);
-    for (int v = 0; v < nv; ++v)
-      if (!on_boundary[v]) Q[v] = x.segment<3>(3 * v);
-    for (const auto& c : tets) {
-      if (core::positive_tet(Q, c)) continue;
-      ++res.tets_inverted;
-      if (res.tets_inverted <= 10) {
-        int nb_v = 0;
-        std::string masks;
-        for (int v : c) {
-          nb_v += on_boundary[v];
-          masks += fmt::format(" {}:{}", v, on_boundary[v] ? axes_mask(vertex_group, v) : 0);
-        }
-        const double vol = (Q[c[1]] - Q[c[0]]).dot((Q[c[2]] - Q[c[0]]).cross(Q[c[3]] - Q[c[0]])) / 6.0;
-        core::logger().debug("boundary first: tet inverted, volume {:.3g}, {} boundary vertices (vertex:axes{})", vol,
-                             nb_v, masks);
-      }
-    }
-    if (res.tets_inverted > 0) {
-      res.reason = fmt::format("{} tets stay inverted after the volume untangling", res.tets_inverted);
-      res.placement = std::move(Q);
-      return res;
-    }
-  }
+  if (!place_charts(points, tris, labels, vertex_group, on_boundary, h, base, Q, res)) return res;
+  if (!place_volume(points, tets, vertex_group, on_boundary, base, Q, res)) return res;
   res.valid = true;
   P.swap(Q);
   return res;
 }
 
-}  // namespace polycube::construct
+}  // namespace polycube::mapping

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-namespace polycube::construct {
+namespace polycube::mapping {
 
 //! Result of place_boundary_first().
 struct BoundaryFirstResult {
@@ -55,4 +55,4 @@ BoundaryFirstResult place_boundary_first(const std::vector<core::Vec3>& points, 
                                          const std::vector<int>& vertex_group, std::vector<core::Vec3>& P,
                                          const solve::UntangleOptions& base, double h);
 
-}  // namespace polycube::construct
+}  // namespace polycube::mapping

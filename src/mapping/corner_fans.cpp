@@ -1,14 +1,14 @@
 //! Reopening of flipped corner fans (see corner_fans.h).
-#include "construct/corner_fans.h"
+#include "mapping/corner_fans.h"
 
-#include "construct/labeling.h"
+#include "core/polycube_map.h"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
 
-namespace polycube::construct {
+namespace polycube::mapping {
 
 ReopenedFans reopen_flipped_fans(const std::vector<core::Tri>& tris, const std::vector<int>& labels,
                                  std::vector<core::Vec3>& P) {
@@ -37,7 +37,7 @@ ReopenedFans reopen_flipped_fans(const std::vector<core::Tri>& tris, const std::
         const int i = static_cast<int>(std::find(t.begin(), t.end(), c) - t.begin());
         next[t[(i + 1) % 3]] = t[(i + 2) % 3];
         prev[t[(i + 2) % 3]] = t[(i + 1) % 3];
-        flipped = flipped || !faces_label(P, t, labels[f]);
+        flipped = flipped || !core::faces_label(P, t, labels[f]);
       }
       if (!flipped || next.size() < 2) continue;
       int first = -1;
@@ -79,4 +79,4 @@ ReopenedFans reopen_flipped_fans(const std::vector<core::Tri>& tris, const std::
   return out;
 }
 
-}  // namespace polycube::construct
+}  // namespace polycube::mapping

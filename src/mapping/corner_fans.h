@@ -5,16 +5,15 @@
 //! At a concave corner one chart has to open to 270° around the corner. When the deformation
 //! cannot find that, it leaves the chart's fan swept the short way (90°) with every triangle
 //! facing away from its label, while the tets stay positive or nearly so: the untangling is
-//! stuck, since reaching the 270° sweep needs a large move of the whole fan. Seen on every
-//! uncertified map of the cup and the bunny. The repair places the fan's inner spokes on the
-//! long sweep directly, in the chart's plane, at their distance from the corner, after which a
-//! local untangling around the fan settles the tets below it.
+//! stuck, since reaching the 270° sweep needs a large move of the whole fan. The repair places
+//! the fan's inner spokes on the long sweep directly, in the chart's plane, at their distance
+//! from the corner, after which a local untangling around the fan settles the tets below it.
 
 #include "core/types.h"
 
 #include <vector>
 
-namespace polycube::construct {
+namespace polycube::mapping {
 
 //! Result of reopen_flipped_fans().
 struct ReopenedFans {
@@ -34,4 +33,4 @@ struct ReopenedFans {
 ReopenedFans reopen_flipped_fans(const std::vector<core::Tri>& tris, const std::vector<int>& labels,
                                  std::vector<core::Vec3>& P);
 
-}  // namespace polycube::construct
+}  // namespace polycube::mapping

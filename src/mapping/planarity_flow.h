@@ -25,7 +25,7 @@
 
 #include <vector>
 
-namespace polycube::construct {
+namespace polycube::mapping {
 
 //! Options of planarity_flow().
 struct PlanarityFlowOptions {
@@ -65,4 +65,4 @@ PlanarityFlowResult planarity_flow(const core::TetMesh& mesh, const std::vector<
                                    const std::vector<core::Tri>& boundary, const std::vector<int>& labels,
                                    double ghost_height, const PlanarityFlowOptions& options = {});
 
-}  // namespace polycube::construct
+}  // namespace polycube::mapping

@@ -5,7 +5,7 @@
 //! sits above the corner along the target's outward normal. The tet is positive exactly when
 //! the quad corner faces the same side as the target, so the elliptic energy's barrier keeps
 //! boundary quads from folding back over their neighbours (a pleat of positive hexes, which
-//! the hexes' own corner tets do not see: bunny, fandisk).
+//! the hexes' own corner tets do not see: it forms where the boundary is curved or creased).
 //!
 //! Apexes are extra points appended after the mesh's points; apex k follows its corner vertex
 //! base[k] at the constant offset[k] (height: the vertex's local edge length), so the lifted

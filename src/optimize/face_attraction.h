@@ -4,7 +4,7 @@
 //!
 //! Vertex attraction alone interpolates the surface: every boundary vertex on it, every quad a
 //! chord. Where quads are long for the curvature, or straddle a sharp edge the hex mesh has no
-//! edge for, the chord is what the Hausdorff distance sees (bunny, max-planck, fandisk). Each
+//! edge for, the chord is what the Hausdorff distance sees (curved and creased models). Each
 //! boundary quad's centre, the mean of its four corners, is made an extra point of the
 //! reduction and attracted to the target too, so the boundary fits the surface in the least
 //! squares sense instead of interpolating it.

@@ -84,7 +84,7 @@ struct OptimizeOptions {
   //! When the result (valid) is still beyond hausdorff_bound after the drift retries, the
   //! quality rounds run again from their start with the quad centres attracted with this
   //! weight (face_attraction), kept when that lowers the Hausdorff distance; 0: no fit retry.
-  //! Bunny 0.94 -> 0.90 %, max-planck 1.00 -> 0.73 %, fandisk 1.68 -> 1.02 % at 20k hexes.
+  //! Curved and creased surfaces gain most (figures in bench/RESULTS.md).
   double fit_retry = 1.0;
 };
 

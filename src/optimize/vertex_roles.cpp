@@ -71,7 +71,7 @@ VertexRoles classify_vertices(const core::HexMesh& mesh, const TargetSurface& ta
   }
   // Corners: each target corner goes to its nearest candidate vertex.
   // A vertex where two sharp edges meet takes a corner only when it is a junction of three or
-  // more feature lines (a T on fandisk, where the hex boundary follows two of them; not the end
+  // more feature lines (a T junction of creases, where the hex boundary follows two of them; not the end
   // of a line, as noise creases on scanned models have), within half the distance, and no
   // vertex where three sharp edges meet is near.
   const auto& tf = target.features();

@@ -1,6 +1,7 @@
 //! The whole chain (see pipeline.h).
 #include "pipeline/pipeline.h"
 
+#include "core/stopwatch.h"
 #include "core/errors.h"
 #include "core/log.h"
 #include "core/topology.h"
@@ -17,7 +18,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <iterator>
 #include <optional>
@@ -29,7 +29,6 @@ namespace polycube::pipeline {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
 //! Every stage's name, in order (simplify and optimize can be turned off).
 constexpr const char* kStages[] = {"input", "construct", "simplify", "hexmesh", "optimize", "quality"};
@@ -64,7 +63,7 @@ class Runner {
     if (o_.on_stage) o_.on_stage(index_, count_, name);
     core::logger().info("run: stage {}/{}: {}", index_, count_, name);
     StageRecord rec{name, 0.0, false};
-    const auto t = Clock::now();
+    const core::Stopwatch clock;
     try {
       if (o_.inject_failure == name) throw core::GeometryError("injected failure (--inject-failure " + name + ")");
       body();
@@ -77,7 +76,7 @@ class Runner {
     } catch (const std::bad_alloc&) {
       fail(name, "out of memory", false);
     }
-    rec.seconds = std::chrono::duration<double>(Clock::now() - t).count();
+    rec.seconds = clock.seconds();
     r_.stages.push_back(rec);
     return rec.ok;
   }
@@ -105,7 +104,7 @@ double RunResult::seconds(const std::string& stage) const {
 RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem::path& out_dir,
                        const RunOptions& o) {
   namespace fs = std::filesystem;
-  const auto t_start = Clock::now();
+  const core::Stopwatch clock;
   RunResult r;
   if (o.target_hexes <= 0) throw core::InputError("the target number of hexes must be positive");
   if (!o.inject_failure.empty() &&
@@ -231,7 +230,7 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
       throw core::GeometryError(fmt::format("the final hex mesh has {} inverted hexes", r.inverted));
   });
 
-  r.total_seconds = std::chrono::duration<double>(Clock::now() - t_start).count();
+  r.total_seconds = clock.seconds();
   rusage usage{};
   if (getrusage(RUSAGE_SELF, &usage) == 0) r.peak_memory_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;
   return r;

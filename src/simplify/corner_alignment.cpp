@@ -1,11 +1,11 @@
 #include "simplify/corner_alignment.h"
 
+#include "core/stopwatch.h"
 #include "core/disjoint_sets.h"
 #include "core/errors.h"
 #include "solve/milp.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -16,8 +16,6 @@ namespace polycube::simplify {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 using core::DisjointSets;
 
@@ -285,10 +283,10 @@ AlignResult align_corners(const structure::PolycubeStructure& s, const AlignOpti
   if (opt.scale < 0.0 || !std::isfinite(opt.scale)) throw core::InputError("simplify: scale must be >= 0 (0 = automatic)");
   if (!(opt.lambda_min >= 0.0)) throw core::InputError("simplify: lambda-min must be >= 0");
   AlignResult res;
-  const auto t_sys = Clock::now();
+  const core::Stopwatch t_sys;
   res.scale = opt.scale > 0.0 ? opt.scale : auto_scale(s, opt.auto_resolution);
   res.system = build_corner_system(s, res.scale, opt.system);
-  res.seconds_system = since(t_sys);
+  res.seconds_system = t_sys.seconds();
   const CornerSystem& sys = res.system;
   const int nc = static_cast<int>(s.corners.size());
   for (int a = 0; a < 3; ++a) res.planes_before[a] = distinct(sys.axes[a].coordinate);
@@ -331,25 +329,25 @@ AlignResult align_corners(const structure::PolycubeStructure& s, const AlignOpti
       res.stop_reason = "lambda_min";
       break;
     }
-    const auto t_it = Clock::now();
+    const core::Stopwatch t_it;
     AlignIteration rec;
     rec.lambda = lambda;
-    const auto t_pair = Clock::now();
+    const core::Stopwatch t_pair;
     const auto pos = corner_positions();
     const auto pairs = pair_corners(s, pos, can_align, exterior, &rec.pairing);
-    res.seconds_pairing += since(t_pair);
+    res.seconds_pairing += t_pair.seconds();
     rec.candidates = static_cast<int>(pairs.size());
     if (pairs.empty()) {
       res.converged = true;
       res.stop_reason = "converged";
-      rec.seconds = since(t_it);
+      rec.seconds = t_it.seconds();
       rec.aligned_total = static_cast<int>(res.aligned.size());
       for (int a = 0; a < 3; ++a) rec.planes[a] = distinct(class_pos[a]);
       rec.shape_energy = shape_energy(sys, class_pos, nullptr);
       res.iterations.push_back(rec);
       break;
     }
-    const auto t_solve = Clock::now();
+    const core::Stopwatch t_solve;
     for (int a = 0; a < 3; ++a) {
       std::vector<CornerPair> pa;
       for (const auto& p : pairs)
@@ -366,17 +364,17 @@ AlignResult align_corners(const structure::PolycubeStructure& s, const AlignOpti
         }
       states[a].rebuild();
     }
-    res.seconds_solve += since(t_solve);
+    res.seconds_solve += t_solve.seconds();
     rec.aligned_total = static_cast<int>(res.aligned.size());
     for (int a = 0; a < 3; ++a) rec.planes[a] = distinct(class_pos[a]);
     rec.shape_energy = shape_energy(sys, class_pos, nullptr);
-    rec.seconds = since(t_it);
+    rec.seconds = t_it.seconds();
     res.iterations.push_back(rec);
     lambda *= 0.5;
   }
 
   // finalization: E_shape only under all alignments (thesis §3.5)
-  const auto t_fin = Clock::now();
+  const core::Stopwatch t_fin;
   for (int a = 0; a < 3; ++a) {
     const auto x = solve_axis(sys.axes[a], states[a], {}, 1.0, res.solver);
     ++res.lp_solves;
@@ -387,7 +385,7 @@ AlignResult align_corners(const structure::PolycubeStructure& s, const AlignOpti
     }
     res.planes_after[a] = distinct(class_pos[a]);
   }
-  res.seconds_finalize = since(t_fin);
+  res.seconds_finalize = t_fin.seconds();
   res.corners = corner_positions();
   res.shape_energy = shape_energy(sys, class_pos, &res.max_displacement);
   return res;

@@ -17,6 +17,7 @@
 
 #include "core/polycube_map.h"
 #include "simplify/corner_alignment.h"
+#include "solve/untangle.h"
 #include "structure/structure.h"
 
 #include <string>
@@ -26,10 +27,10 @@ namespace polycube::simplify {
 
 //! Options of fit_polycube().
 struct FitOptions {
-  int max_iterations = 200;   //!< outer iterations of the untangler
+  solve::UntangleOptions untangling;  //!< the untangling of the free coordinates
   bool untangle = true;       //!< false: only the initial placement (for tests)
   //! When tets stay inverted after the untangling, place the boundary first
-  //! (construct/boundary_first.h) and untangle again from there.
+  //! (mapping/boundary_first.h) and untangle again from there.
   bool boundary_first = true;
 };
 

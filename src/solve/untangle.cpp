@@ -2,6 +2,7 @@
 //! per-element projected Hessian instead of the paper's L-BFGS.
 #include "solve/untangle.h"
 
+#include "core/stopwatch.h"
 #include "core/errors.h"
 #include "core/log.h"
 #include "core/progress.h"
@@ -17,7 +18,6 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -412,7 +412,7 @@ std::vector<core::Vec3> unflatten(const Eigen::VectorXd& x) {
 
 UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::VectorXd& y,
                         const UntangleOptions& o) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const core::Stopwatch clock;
   PC_REQUIRE(el.gradients.size() == el.tets.size() && el.weights.size() == el.tets.size(),
              "untangle: element arrays differ in size");
   PC_REQUIRE(y.size() == R.num_variables() && R.x0.size() == R.B.rows() && R.B.rows() % 3 == 0,
@@ -442,18 +442,16 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
   // Already valid meshes need no large ε: start small so the barrier keeps them valid.
   if (st.inverted == 0) eps = std::max(o.min_epsilon, std::min(eps, 1e-3 * std::max(st.min_det, 0.0)));
 
-  const auto t_pattern = std::chrono::steady_clock::now();
+  const core::Stopwatch pattern_clock;
   const Assembly A = build_assembly(el, R, attractions);
   core::logger().debug("untangle: {} unknowns, {} Hessian entries, pattern {:.2f} s", A.n, A.H.nonZeros(),
-                       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_pattern).count());
+                       pattern_clock.seconds());
   Eigen::SparseMatrix<double> H = A.H;
   SparseSpdSolver solver;
   if (o.linear_solver == NewtonSolver::Cholesky) solver.analyze(H);
   const int n = A.n;
   double damping = 0.0;
   double t_assemble = 0, t_factor = 0, t_search = 0;
-  auto now = [] { return std::chrono::steady_clock::now(); };
-  auto secs = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
   // Best state seen (fewest inverted elements, then lowest ε-independent order: latest).
   Eigen::VectorXd best_y = y;
   int best_inverted = st.inverted;
@@ -468,7 +466,7 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
     const double E_prev = st.energy;
     for (int step = 0; step < o.newton_steps; ++step) {
       // Assemble the gradient and projected Hessian in y.
-      const auto ta = now();
+      core::Stopwatch phase;
       double* hv = H.valuePtr();
       std::fill(hv, hv + H.nonZeros(), 0.0);
       Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
@@ -512,8 +510,8 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
           }
         }
       }
-      const auto tf = now();
-      t_assemble += secs(ta, tf);
+      t_assemble += phase.seconds();
+      phase.restart();
       // Regularize (translations and other null directions of a projected Hessian).
       double mean_diag = 0.0;
       for (int j = 0; j < n; ++j) mean_diag += hv[A.diag_slot[j]];
@@ -545,8 +543,8 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
       }
       ++res.newton_steps;
       const double slope = g.dot(dir);
-      const auto ts = now();
-      t_factor += secs(tf, ts);
+      t_factor += phase.seconds();
+      phase.restart();
       if (!(slope < 0)) break;  // converged (or numerically stuck)
       // Backtracking line search; once valid, never accept a step that inverts an element.
       const Stats cur = evaluate(el, attractions, x, eps, lambda, det_target);
@@ -565,7 +563,7 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
           break;
         }
       }
-      t_search += secs(ts, now());
+      t_search += phase.seconds();
       if (!accepted) break;
       if (alpha < 1e-3) damping = std::max(damping * 10.0, 1e-6 * mean_diag);  // poor model: damp
       else damping *= 0.1;
@@ -609,7 +607,7 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
   res.min_det = st.min_det;
   res.energy = st.energy;
   res.epsilon = eps;
-  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  res.seconds = clock.seconds();
   return res;
 }
 

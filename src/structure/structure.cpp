@@ -1,6 +1,6 @@
 #include "structure/structure.h"
 
-#include "core/disjoint_sets.h"
+#include "core/charts.h"
 #include "core/errors.h"
 #include "core/topology.h"
 
@@ -18,7 +18,6 @@ namespace {
 
 using core::Vec3;
 
-using core::DisjointSets;
 
 //! In-plane axes (u, v) of a chart so that e_u x e_v is its outward normal.
 std::pair<int, int> plane_axes(int axis, int sign) {
@@ -81,27 +80,20 @@ PolycubeStructure extract_structure(const core::PolycubeMap& map) {
   }
 
   // 2. charts: components of equally labelled triangles through manifold edges
-  const auto et = core::unique_edges(surf);
-  const core::Adjacency ec = core::edge_cells(et);
-  DisjointSets ds(static_cast<std::size_t>(nf));
-  for (int e = 0; e < et.num_edges(); ++e)
-    if (ec.degree(e) == 2 && s.triangle_label[ec[e][0]] == s.triangle_label[ec[e][1]])
-      ds.unite(ec[e][0], ec[e][1]);
-  s.triangle_chart.assign(static_cast<std::size_t>(nf), -1);
-  std::vector<int> root_chart(static_cast<std::size_t>(nf), -1);
+  const core::TriangleCharts tc = core::triangle_charts(s.triangles, s.triangle_label);
+  s.triangle_chart = tc.triangle_chart;
+  s.charts.resize(static_cast<std::size_t>(tc.count));
   for (int f = 0; f < nf; ++f) {
-    const int r = ds.find(f);
-    if (root_chart[r] < 0) {
-      root_chart[r] = static_cast<int>(s.charts.size());
-      Chart c;
+    Chart& c = s.charts[s.triangle_chart[f]];
+    if (c.triangles.empty()) {  // the chart's first triangle
       c.label = s.triangle_label[f];
       c.axis = core::label_axis(c.label);
       c.sign = core::label_sign(c.label);
-      s.charts.push_back(c);
     }
-    s.triangle_chart[f] = root_chart[r];
-    s.charts[root_chart[r]].triangles.push_back(f);
+    c.triangles.push_back(f);
   }
+  const auto et = core::unique_edges(surf);
+  const core::Adjacency ec = core::edge_cells(et);
   for (Chart& c : s.charts) {
     std::vector<int> verts;
     for (int f : c.triangles) {

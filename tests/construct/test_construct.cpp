@@ -11,7 +11,7 @@
 #include "io/mesh_io.h"
 
 #include "construct/pipeline.h"
-#include "construct/shapes.h"
+#include "support/shapes.h"
 #include "construct/validator.h"
 
 #include <gtest/gtest.h>

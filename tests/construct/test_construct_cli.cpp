@@ -11,7 +11,7 @@
 
 #include "cli/run_cli.h"
 #include "cli/surface_file.h"
-#include "construct/shapes.h"
+#include "support/shapes.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

@@ -13,6 +13,7 @@
 #include "core/polycube_map.h"
 #include "core/topology.h"
 #include "quality/distortion.h"
+#include "support/shapes.h"
 
 #include <Eigen/Geometry>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -34,40 +35,7 @@ using test::Verdict;
 // --- fixtures ---------------------------------------------------------------------------------
 
 //! Closed triangulated surface of the cube [0,s]^3 with n x n squares per face (outward).
-core::TriMesh cube_surface(int n, double s = 1.0) {
-  core::TriMesh m;
-  std::map<std::array<long, 3>, int> ids;
-  auto vid = [&](const Vec3& p) {
-    const std::array<long, 3> k{std::lround(p.x() * n / s), std::lround(p.y() * n / s), std::lround(p.z() * n / s)};
-    auto it = ids.find(k);
-    if (it != ids.end()) return it->second;
-    m.points.push_back(p);
-    return ids[k] = m.num_points() - 1;
-  };
-  for (int a = 0; a < 3; ++a)
-    for (int side = 0; side < 2; ++side) {
-      const int u = (a + 1) % 3, w = (a + 2) % 3;
-      for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j) {
-          auto pt = [&](int di, int dj) {
-            Vec3 p;
-            p[a] = side * s;
-            p[u] = (i + di) * s / n;
-            p[w] = (j + dj) * s / n;
-            return vid(p);
-          };
-          const int p00 = pt(0, 0), p10 = pt(1, 0), p11 = pt(1, 1), p01 = pt(0, 1);
-          if (side == 1) {  // normal +a = u x w: counter-clockwise in (u, w)
-            m.cells.push_back({p00, p10, p11});
-            m.cells.push_back({p00, p11, p01});
-          } else {
-            m.cells.push_back({p00, p11, p10});
-            m.cells.push_back({p00, p01, p11});
-          }
-        }
-    }
-  return m;
-}
+core::TriMesh cube_surface(int n, double s = 1.0) { return test::make_box(s, s, s, n); }
 
 //! Boundary triangles (volume indices, outward) of a tet mesh and labels from their normals.
 void normal_labels(const core::TetMesh& mesh, std::vector<core::Tri>& tris, std::vector<int>& labels) {
@@ -160,7 +128,7 @@ TEST(Deform, PlanarityFlowGivesACertifiedSphere) {
   // inverts a tet, and after the snap and the untangling the map is certified.
   const LabeledSphere sp = labeled_sphere();
   construct::DeformOptions o;
-  o.flow = true;
+  o.first.method = mapping::FirstPolycubeMethod::PlanarityFlow;
   const Constructed c = deform_and_certify(sp.mesh, sp.tris, sp.labels, o);
   EXPECT_TRUE(c.cert.certified()) << c.cert.reason();
   EXPECT_GT(c.def.flow_iterations, 0);
@@ -259,6 +227,42 @@ TEST(Construct, RotatedBoxIsAlignedAndKeepsItsPositions) {
   std::set<std::array<double, 3>> model;
   for (const Vec3& p : r.map.model) model.insert({p.x(), p.y(), p.z()});
   for (const Vec3& p : s.points) EXPECT_EQ(model.count({p.x(), p.y(), p.z()}), 1u);
+}
+
+TEST(Construct, PlanListsTheCompactnessScheduleThenThePredeformedRetry) {
+  construct::ConstructOptions o;
+  o.labeling.compactness = 2.0;
+  const std::vector<construct::Attempt> plan = construct::plan_attempts(o);
+  ASSERT_EQ(plan.size(), 6u);  // compactness 1, 2, 0.5 times the user's; then the same pre-deformed
+  const double expected[] = {2.0, 4.0, 1.0};
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    EXPECT_EQ(plan[i].compactness, expected[i % 3]) << i;
+    EXPECT_EQ(plan[i].retry, i >= 3) << i;
+    EXPECT_EQ(plan[i].predeform_iterations, i >= 3 ? o.predeform_retry : 0) << i;
+    EXPECT_EQ(plan[i].unfold_moves, i >= 3 ? o.predeform_retry_unfold_moves : 0) << i;
+  }
+  EXPECT_EQ(plan[0].name(), "compactness 2");
+  EXPECT_EQ(plan[4].name(), "pre-deformed, compactness 4");
+  // A pre-deformation asked for by the user: no retry pass; the attempts start from it.
+  o.predeform.iterations = 5;
+  const std::vector<construct::Attempt> asked = construct::plan_attempts(o);
+  ASSERT_EQ(asked.size(), 3u);
+  for (const auto& a : asked) EXPECT_EQ(a.predeform_iterations, 5);
+  o.predeform.iterations = 0;
+  o.predeform_retry = 0;
+  o.retry_compactness_factors.clear();
+  EXPECT_EQ(construct::plan_attempts(o).size(), 1u);
+}
+
+TEST(Construct, ReportDescribesTheKeptAttempt) {
+  // A box certifies in the first attempt: the report names it and its own repair figures.
+  const construct::ConstructResult r = construct::construct_polycube(cube_surface(3, 10.0));
+  EXPECT_EQ(r.attempts, 1);
+  EXPECT_EQ(r.attempt.name(), construct::plan_attempts({})[0].name());
+  EXPECT_FALSE(r.attempt.retry);
+  EXPECT_EQ(r.predeform.iterations, 0);  // the kept attempt had no pre-deformation
+  EXPECT_EQ(r.repair_moves, 0);          // the normals of a box give a valid labeling at once
+  EXPECT_TRUE(r.certificate.certified());
 }
 
 TEST(Certify, RejectsInvertedAndOffPlaneMaps) {

@@ -2,7 +2,7 @@
 #include "core/types.h"
 #include "io/mesh_io.h"
 
-#include "construct/shapes.h"
+#include "support/shapes.h"
 #include "construct/validator.h"
 
 #include "cli/surface_file.h"

@@ -2,7 +2,7 @@
 #include "core/topology.h"
 
 #include "core/errors.h"
-#include "fixtures.h"
+#include "support/fixtures.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

@@ -1,7 +1,6 @@
-//! Tests of the boundary-first placement of a polycube map (construct/boundary_first.h).
-#include "construct/boundary_first.h"
-#include "construct/labeling.h"
-#include "core/fixtures.h"
+//! Tests of the boundary-first placement of a polycube map (mapping/boundary_first.h).
+#include "mapping/boundary_first.h"
+#include "support/fixtures.h"
 #include "core/polycube_map.h"
 #include "core/topology.h"
 
@@ -100,14 +99,14 @@ TEST(BoundaryFirst, ScrambledPolycubeGetsStraightEdgesAndNoInvertedTet) {
 
   solve::UntangleOptions o;
   o.min_det_target = 1e-6;
-  const auto r = construct::place_boundary_first(s.mesh.points, s.mesh.cells, s.tris, s.labels, s.group, P, o, 0.5);
+  const auto r = mapping::place_boundary_first(s.mesh.points, s.mesh.cells, s.tris, s.labels, s.group, P, o, 0.5);
   ASSERT_TRUE(r.valid) << r.reason;
   EXPECT_TRUE(r.reason.empty());
   EXPECT_EQ(r.tets_inverted, 0);
   EXPECT_EQ(r.charts_inverted, 0);
   // Independently: every tet positive, every triangle facing its label.
   for (const auto& c : s.mesh.cells) EXPECT_GT(det(P, c), 0.0);
-  for (std::size_t f = 0; f < s.tris.size(); ++f) EXPECT_TRUE(construct::faces_label(P, s.tris[f], s.labels[f]));
+  for (std::size_t f = 0; f < s.tris.size(); ++f) EXPECT_TRUE(core::faces_label(P, s.tris[f], s.labels[f]));
   // Chart coordinates untouched bit for bit; edge vertices back on their uniform positions (the
   // model's arc-length fractions along straight, uniformly subdivided edges).
   for (int v = 0; v < nv; ++v) {
@@ -133,7 +132,7 @@ TEST(BoundaryFirst, MirroredPolycubeIsRefusedAndLeftAsItWas) {
   const std::vector<Vec3> before = P;
   solve::UntangleOptions o;
   o.max_iterations = 30;
-  const auto r = construct::place_boundary_first(s.mesh.points, s.mesh.cells, s.tris, s.labels, s.group, P, o, 0.5);
+  const auto r = mapping::place_boundary_first(s.mesh.points, s.mesh.cells, s.tris, s.labels, s.group, P, o, 0.5);
   EXPECT_FALSE(r.valid);
   EXPECT_FALSE(r.reason.empty());
   EXPECT_EQ(P, before);

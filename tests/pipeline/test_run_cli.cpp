@@ -13,7 +13,7 @@
 
 #include "cli/run_cli.h"
 #include "cli/surface_file.h"
-#include "construct/shapes.h"
+#include "support/shapes.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -2,7 +2,7 @@
 //! (solve/sparse_solver.h): element energy derivatives, Cholesky solves, untangling of a folded
 //! grid with fixed and shared coordinates, attractions.
 #include "core/errors.h"
-#include "core/fixtures.h"
+#include "support/fixtures.h"
 #include "solve/sparse_solver.h"
 #include "solve/untangle.h"
 

@@ -1,6 +1,6 @@
 #pragma once
 //! \file fixtures.h
-//! \brief Tiny meshes built in code for the core tests.
+//! \brief Tiny meshes built in code, shared by the tests of every folder.
 
 #include "core/types.h"
 

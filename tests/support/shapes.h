@@ -1,5 +1,6 @@
 #pragma once
-// Small closed surfaces built in code for the construct tests.
+//! \file shapes.h
+//! \brief Small closed surfaces built in code, shared by the tests of every folder.
 #include "core/types.h"
 
 #include <cmath>
