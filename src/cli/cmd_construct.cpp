@@ -70,13 +70,7 @@ void run_construct(const ConstructCliOptions& o) {
   fs::create_directories(dir, ec);
   if (ec) throw core::InputError(fmt::format("cannot create the output folder {}: {}", dir.string(), ec.message()));
   io::write_polycube_map(dir / "model.mesh", dir / "polycube.mesh", r.map);
-  std::string text_labels;
-  text_labels.reserve(r.labels.size() * 2);
-  for (const int l : r.labels) {
-    text_labels += static_cast<char>('0' + l);
-    text_labels += '\n';
-  }
-  io::write_text_atomic(dir / "labeling.txt", text_labels);
+  io::write_labeling(dir / "labeling.txt", r.labels);
 
   const auto& s = r.seconds;
   nlohmann::json j = {

@@ -50,13 +50,7 @@ void write_outputs(const LabelOptions& o, const construct::LabelSurfaceResult& r
     out.points = r.predeform.points;
     io::write_mesh(dir / "predeformed.mesh", out);
   }
-  std::string text_labels;
-  text_labels.reserve(r.labels.size() * 2);
-  for (const int l : r.labels) {
-    text_labels += static_cast<char>('0' + l);
-    text_labels += '\n';
-  }
-  io::write_text_atomic(dir / "labeling.txt", text_labels);
+  io::write_labeling(dir / "labeling.txt", r.labels);
 }
 
 nlohmann::json report_json(const LabelOptions& o, const std::string& source, const construct::LabelSurfaceResult& r) {

@@ -369,4 +369,15 @@ core::TriMesh read_surface(const fs::path& path) {
 
 void write_text_atomic(const fs::path& path, const std::string& text) { write_bytes_atomic(path, text); }
 
+void write_labeling(const fs::path& path, const std::vector<int>& labels) {
+  std::string text;
+  text.reserve(labels.size() * 2);
+  for (const int l : labels) {
+    PC_REQUIRE(l >= 0 && l < 6, "write_labeling: label out of range");
+    text += static_cast<char>('0' + l);
+    text += '\n';
+  }
+  write_bytes_atomic(path, text);
+}
+
 }  // namespace polycube::io

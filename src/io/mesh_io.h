@@ -84,4 +84,8 @@ core::TriMesh read_surface(const std::filesystem::path& path);
 //! Write text to a file atomically (used for reports and labelings too).
 void write_text_atomic(const std::filesystem::path& path, const std::string& text);
 
+//! Write a labeling (ARCHITECTURE §4): one label in 0..5 per line, in the order of the boundary
+//! triangles written as the tet mesh's Triangles block; atomically.
+void write_labeling(const std::filesystem::path& path, const std::vector<int>& labels);
+
 }  // namespace polycube::io

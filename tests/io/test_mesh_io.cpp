@@ -182,6 +182,16 @@ TEST(Writers, RefuseWhatTheFormatCannotHold) {
   EXPECT_THROW(write_mesh_to_string(bad, Format::Stl), core::InputError);
 }
 
+TEST(Writers, LabelingIsOneLabelPerLine) {
+  test::TempDir dir("labeling");
+  write_labeling(dir / "labeling.txt", {0, 5, 2, 3});
+  std::ifstream in(dir / "labeling.txt", std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text, "0\n5\n2\n3\n");
+  EXPECT_THROW(write_labeling(dir / "bad.txt", {0, 6}), core::InternalError);
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad.txt"));
+}
+
 TEST(Writers, AtomicAndNoLeftovers) {
   test::TempDir dir("atomic");
   const auto target = dir / "m.mesh";
