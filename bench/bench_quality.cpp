@@ -11,6 +11,7 @@
 #include "quality/singularities.h"
 #include "quality/structure_topology.h"
 #include "quality/surface_distance.h"
+#include "support/fixtures.h"
 
 #include <nlohmann/json.hpp>
 
@@ -46,25 +47,13 @@ double median_seconds(const std::function<void()>& f) {
 
 //! n^3 grid of the unit cube, interior vertices moved randomly by up to `amplitude` cells.
 core::HexMesh perturbed_grid(int n, double amplitude) {
-  core::HexMesh m;
-  auto id = [n](int i, int j, int k) { return i + (n + 1) * (j + (n + 1) * k); };
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-amplitude / n, amplitude / n);
-  for (int k = 0; k <= n; ++k)
-    for (int j = 0; j <= n; ++j)
-      for (int i = 0; i <= n; ++i) {
-        core::Vec3 p(double(i) / n, double(j) / n, double(k) / n);
-        if (i > 0 && j > 0 && k > 0 && i < n && j < n && k < n)
-          p += core::Vec3(u(rng), u(rng), u(rng));
-        m.points.push_back(p);
-      }
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        m.cells.push_back({id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
-                           id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1),
-                           id(i, j + 1, k + 1)});
-  return m;
+  return test::lattice_hexes(n, n, n, [&](int i, int j, int k) {
+    core::Vec3 p(double(i) / n, double(j) / n, double(k) / n);
+    if (i > 0 && j > 0 && k > 0 && i < n && j < n && k < n) p += core::Vec3(u(rng), u(rng), u(rng));
+    return p;
+  });
 }
 
 struct Row {

@@ -1,6 +1,7 @@
 #pragma once
 // Small hex meshes and target surfaces built in code for the optimize tests.
 
+#include "support/fixtures.h"
 #include "core/types.h"
 
 #include <cmath>
@@ -13,21 +14,6 @@
 #include <vector>
 
 namespace polycube::test {
-
-//! nx by ny by nz grid of the box [0,sx] x [0,sy] x [0,sz].
-inline core::HexMesh box_grid(int nx, int ny, int nz, double sx = 1, double sy = 1, double sz = 1) {
-  core::HexMesh m;
-  auto id = [&](int i, int j, int k) { return i + (nx + 1) * (j + (ny + 1) * k); };
-  for (int k = 0; k <= nz; ++k)
-    for (int j = 0; j <= ny; ++j)
-      for (int i = 0; i <= nx; ++i) m.points.emplace_back(sx * i / nx, sy * j / ny, sz * k / nz);
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i)
-        m.cells.push_back({id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k), id(i, j, k + 1),
-                           id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)});
-  return m;
-}
 
 //! The box [0,sx] x [0,sy] x [0,sz] as 12 outward triangles.
 inline core::TriMesh box_surface(double sx = 1, double sy = 1, double sz = 1) {

@@ -16,13 +16,14 @@ namespace polycube::test {
 
 using core::Vec3;
 
-//! Structured nx x ny x nz hex grid of unit cells, vertex (i,j,k) = i + (nx+1)(j + (ny+1)k).
-inline core::HexMesh hex_grid(int nx, int ny, int nz, double h = 1.0) {
+//! Structured nx x ny x nz hex grid, vertex (i,j,k) = i + (nx+1)(j + (ny+1)k) at position(i, j, k).
+template <class Position>
+core::HexMesh lattice_hexes(int nx, int ny, int nz, Position position) {
   core::HexMesh m;
   auto id = [&](int i, int j, int k) { return i + (nx + 1) * (j + (ny + 1) * k); };
   for (int k = 0; k <= nz; ++k)
     for (int j = 0; j <= ny; ++j)
-      for (int i = 0; i <= nx; ++i) m.points.emplace_back(h * i, h * j, h * k);
+      for (int i = 0; i <= nx; ++i) m.points.push_back(position(i, j, k));
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i)
@@ -30,6 +31,17 @@ inline core::HexMesh hex_grid(int nx, int ny, int nz, double h = 1.0) {
                            id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1),
                            id(i, j + 1, k + 1)});
   return m;
+}
+
+//! Structured nx x ny x nz hex grid of cells of side h.
+inline core::HexMesh hex_grid(int nx, int ny, int nz, double h = 1.0) {
+  return lattice_hexes(nx, ny, nz, [h](int i, int j, int k) { return Vec3(h * i, h * j, h * k); });
+}
+
+//! nx by ny by nz grid of the box [0,sx] x [0,sy] x [0,sz].
+inline core::HexMesh box_grid(int nx, int ny, int nz, double sx = 1, double sy = 1, double sz = 1) {
+  return lattice_hexes(nx, ny, nz,
+                       [&](int i, int j, int k) { return Vec3(sx * i / nx, sy * j / ny, sz * k / nz); });
 }
 
 inline double tet_volume(const core::TetMesh& m, int c) {
