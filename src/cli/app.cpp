@@ -101,8 +101,9 @@ void add_expert_options(CLI::App& sub, const std::vector<CLI::Option*>& expert) 
   for (CLI::Option* o : expert) o->group("");
   sub.add_flag_callback(
       "--help-expert",
-      [expert] {
+      [&sub, expert] {
         for (CLI::Option* o : expert) o->group("Expert options");
+        sub.footer("");
         throw CLI::CallForHelp();
       },
       "Show the expert options too (settings of the algorithm's steps; the defaults are tuned)");

@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -195,6 +196,35 @@ TEST(ConstructCli, UncertifiedExitsThreeAndKeepFailedWritesTheAttemptReadably) {
   const CliResult plain = construct(dir / "box.obj", dir / "out2", "--inject-failure certify");
   EXPECT_EQ(plain.exit_code, 3) << plain.err;
   EXPECT_FALSE(fs::exists(dir / "out2"));
+}
+
+//! Options (lines starting with "  -") in a --help text.
+std::vector<std::string> listed_options(const std::string& help) {
+  std::vector<std::string> options;
+  std::istringstream in(help);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("  -", 0) == 0) options.push_back(line.substr(2, line.find_first_of(" {", 2) - 2));
+  return options;
+}
+
+TEST(ConstructCli, HelpShowsTheUserOptionsAndHelpExpertTheRest) {
+  const CliResult user = test::run_cli("construct --help");
+  ASSERT_EQ(user.exit_code, 0) << user.err;
+  const std::vector<std::string> shown = listed_options(user.out);
+  EXPECT_LE(shown.size(), 12u) << user.out;
+  for (const char* o : {"--compactness", "--predeform", "--time-limit", "--keep-failed", "--help-expert"})
+    EXPECT_NE(user.out.find(o), std::string::npos) << o;
+  for (const char* o : {"--iterations", "--flow", "--untangle-first", "--inject-failure"})
+    EXPECT_EQ(user.out.find(o), std::string::npos) << o << " is an expert or test option";
+  EXPECT_NE(user.out.find("--help-expert"), std::string::npos);
+  const CliResult expert = test::run_cli("construct --help-expert");
+  ASSERT_EQ(expert.exit_code, 0) << expert.err;
+  EXPECT_NE(expert.out.find("Expert options:"), std::string::npos);
+  for (const char* o : {"--iterations", "--volume-weight", "--refine-rounds", "--no-boundary-first", "--untangle-first",
+                        "--flow", "--predeform-retry", "--straighten", "--unfold-moves"})
+    EXPECT_NE(expert.out.find(o), std::string::npos) << o;
+  EXPECT_EQ(expert.out.find("--inject-failure"), std::string::npos);
+  EXPECT_GT(listed_options(expert.out).size(), shown.size());
 }
 
 }  // namespace
