@@ -181,8 +181,8 @@ AttemptResult run_attempt(const Attempt& attempt, const Model& model, Predeforma
   if (pre) {
     lopt.data_normals = triangle_normals(pre->points, model.tris);
     for (std::size_t i = 0; i < shape.size(); ++i) shape[i] = pre->points[model.boundary.vertex_map[i]];
-    r.predeform = *pre;
-    r.predeform->points.clear();
+    r.predeform = PredeformResult{{}, pre->iterations, pre->misalignment_before, pre->misalignment_after,
+                                  pre->inverted, pre->seconds};  // its figures, not its points
   }
   const AttemptLabeling labeling = label_for_attempt(model.boundary.surface, shape, lopt, attempt, o, seconds);
   const RepairResult& rep = labeling.repair;

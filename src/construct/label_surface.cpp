@@ -1,33 +1,23 @@
 //! The labeling stage on its own (see label_surface.h).
 #include "construct/label_surface.h"
 
-#include <chrono>
+#include "core/stopwatch.h"
+#include "core/topology.h"
+
 #include <utility>
 
 namespace polycube::construct {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-//! Boundary triangles of the tet mesh in volume vertex indices (what the pre-deformation takes
-//! and what the `Triangles` block of a labeled .mesh file holds).
-std::vector<core::Tri> volume_triangles(const core::TetBoundary& bnd) {
-  std::vector<core::Tri> tris;
-  tris.reserve(bnd.surface.cells.size());
-  for (const auto& t : bnd.surface.cells)
-    tris.push_back({bnd.vertex_map[t[0]], bnd.vertex_map[t[1]], bnd.vertex_map[t[2]]});
-  return tris;
-}
 
 //! Label the boundary of a prepared tet mesh (boundary refined, positively oriented) and
 //! repair the labeling; fills everything but the tetrahedralization figures.
 void label_prepared(LabelSurfaceResult& res, const LabelSurfaceOptions& o) {
   res.boundary = core::boundary(res.mesh);
-  res.boundary_triangles = volume_triangles(res.boundary);
+  res.boundary_triangles = core::boundary_triangles(res.boundary);
   const core::TriMesh& s = res.boundary.surface;
-  const auto t = Clock::now();
+  const core::Stopwatch clock;
 
   // With a pre-deformation the fidelity term reads the normals of the pre-deformed surface,
   // which cluster around the axes; the compactness weights keep reading the model's.
@@ -40,7 +30,7 @@ void label_prepared(LabelSurfaceResult& res, const LabelSurfaceOptions& o) {
   RepairOptions repair = o.repair;
   repair.energy = labeling;
   RepairResult rep = repair_labeling(s, lab.labels, repair);
-  res.seconds.label_and_repair = since(t);
+  res.seconds.label_and_repair = clock.seconds();
 
   res.fidelity = labeling_fidelity(s, rep.labels);
   res.estimate = estimate_polycube(s, rep.labels);
@@ -55,25 +45,25 @@ void label_prepared(LabelSurfaceResult& res, const LabelSurfaceOptions& o) {
 }  // namespace
 
 LabelSurfaceResult label_surface(const core::TriMesh& surface, const LabelSurfaceOptions& o) {
-  const auto t0 = Clock::now();
+  const core::Stopwatch clock;
   TetrahedralizeResult tr = tetrahedralize(surface, o.tetrahedralize);
   LabelSurfaceResult res;
   res.mesh = std::move(tr.mesh);
   res.tetgen_tets = tr.tetgen_tets;
   res.refine = tr.refine;
-  res.seconds.tetrahedralize = since(t0);
+  res.seconds.tetrahedralize = clock.seconds();
   label_prepared(res, o);
   return res;
 }
 
 LabelSurfaceResult label_surface(core::TetMesh mesh, const LabelSurfaceOptions& o) {
-  const auto t0 = Clock::now();
+  const core::Stopwatch clock;
   mesh.labels.clear();
   prepare_tet_mesh(mesh);
   LabelSurfaceResult res;
   res.refine = refine_boundary(mesh);
   res.mesh = std::move(mesh);
-  res.seconds.tetrahedralize = since(t0);
+  res.seconds.tetrahedralize = clock.seconds();
   label_prepared(res, o);
   return res;
 }

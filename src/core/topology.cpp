@@ -1,5 +1,7 @@
 #include "core/topology.h"
 
+#include "core/charts.h"
+#include "core/disjoint_sets.h"
 #include "core/errors.h"
 
 #include <Eigen/Geometry>
@@ -29,31 +31,6 @@ int slot_count(std::size_t cells, int per_cell, const char* what) {
   }
   return static_cast<int>(n);
 }
-
-//! Union-find with path halving; union by smaller root so roots are the lowest members.
-class DisjointSets {
- public:
-  explicit DisjointSets(int n) : parent_(static_cast<std::size_t>(n)) {
-    std::iota(parent_.begin(), parent_.end(), 0);
-  }
-  int find(int x) {
-    while (parent_[x] != x) {
-      parent_[x] = parent_[parent_[x]];
-      x = parent_[x];
-    }
-    return x;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return;
-    if (a < b) std::swap(a, b);
-    parent_[a] = b;
-  }
-
- private:
-  std::vector<int> parent_;
-};
 
 //! Number components of n elements by first appearance of their root.
 Components number_components(DisjointSets& ds, int n) {
@@ -356,6 +333,32 @@ Components surface_components(const Mesh<T>& m, const Adjacency& eslots) {
   }
   return number_components(ds, m.num_cells());
 }
+
+}  // namespace
+
+TriangleCharts triangle_charts(const std::vector<Tri>& tris, const std::vector<int>& labels) {
+  PC_REQUIRE(labels.size() == tris.size(), "triangle_charts: one label per triangle");
+  const int nf = static_cast<int>(tris.size());
+  int num_points = 0;
+  for (const Tri& t : tris)
+    for (int v : t) num_points = std::max(num_points, v + 1);
+  // Edge slots (triangle, local edge) grouped by their sorted end points; a run of exactly two
+  // is a manifold edge.
+  const Grouping g = group_slots<2>(3 * nf, num_points, [&](int slot) {
+    const Tri& t = tris[slot / 3];
+    return sorted_key<2>({t[slot % 3], t[(slot + 1) % 3]});
+  });
+  DisjointSets ds(nf);
+  for (int r = 0; r < g.num_runs(); ++r) {
+    if (g.run_size(r) != 2) continue;
+    const int a = g.order[g.run_start[r]] / 3, b = g.order[g.run_start[r] + 1] / 3;
+    if (labels[a] == labels[b]) ds.unite(a, b);
+  }
+  const Components c = number_components(ds, nf);
+  return {c.cell_component, c.count};
+}
+
+namespace {
 
 bool tet_inverted(const TetMesh& m, int c) {
   const auto& t = m.cells[c];
