@@ -1,5 +1,6 @@
 #include "cli/app.h"
 
+#include "construct/construct.h"
 #include "core/errors.h"
 #include "core/log.h"
 #include "core/progress.h"
@@ -95,6 +96,13 @@ void print_result(const nlohmann::json& json, const std::string& text) {
     std::cout << json.dump(2) << '\n';
   else if (!text.empty())
     std::cout << text << (text.back() == '\n' ? "" : "\n");
+}
+
+std::function<void(int, int, const construct::Attempt&, double)> attempt_progress() {
+  const bool show = !global_options().quiet && !global_options().json;
+  return [show](int i, int n, const construct::Attempt& attempt, double seconds) {
+    if (show) std::fprintf(stderr, "      construct attempt %d/%d: %s (%.0f s so far)\n", i, n, attempt.name().c_str(), seconds);
+  };
 }
 
 void add_expert_options(CLI::App& sub, const std::vector<CLI::Option*>& expert) {

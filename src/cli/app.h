@@ -17,6 +17,9 @@ enum class GridSizing;
 namespace polycube::quality {
 struct ScaledJacobianSummary;
 }
+namespace polycube::construct {
+struct Attempt;
+}
 
 namespace polycube::cli {
 
@@ -44,6 +47,10 @@ void print_result(const nlohmann::json& json, const std::string& text);
 //! A scaled-Jacobian summary as JSON, so that every command reporting one gives it the same shape:
 //! `{"min", "average", "max", "inverted", "invalid", "histogram": [{"lower", "upper", "count"}, ...]}`.
 nlohmann::json scaled_jacobian_json(const quality::ScaledJacobianSummary& summary);
+
+//! Progress lines of construct's attempts on stderr (unless -q or --json): which attempt starts
+//! and how long the construction has run (construct::ConstructOptions::on_attempt).
+std::function<void(int, int, const construct::Attempt&, double)> attempt_progress();
 
 //! Add `--sizing uniform|map` (mesh/grid.h) to a subcommand.
 CLI::Option* add_sizing_option(CLI::App& sub, mesh::GridSizing& sizing, const std::string& help);

@@ -26,7 +26,7 @@ struct ConstructCliOptions {
   std::string input;
   std::string output_dir;
   std::string keep_failed;  // folder for the best uncertified attempt, for diagnosis
-  std::string inject_failure;  // testing only: "certify" = report the result as not certified
+  std::string inject_failure;  // testing only: "certify" = report the result as not certified; "attempt-N"
   construct::ConstructOptions construct;
 };
 
@@ -92,6 +92,7 @@ void run_construct(const ConstructCliOptions& o) {
       {"repair_moves", r.repair_moves},
       {"attempt", r.attempt.name()},
       {"attempts", r.attempts},
+      {"tried", r.tried},
       {"axis_rotation",
        {{"rotated", !r.axis_rotation.rotation.isIdentity()},
         {"l1_energy_before", r.axis_rotation.energy_before},
@@ -173,7 +174,8 @@ void register_construct(CLI::App& app) {
                 "Keep the model's orientation (default: rotate it so its normals cluster on the axes before the "
                 "labeling; the written model keeps the input's positions)");
   sub->add_option("--time-limit", c.time_limit,
-                  "Seconds after which no new labeling/deformation attempt starts (0: no limit)")
+                  "Construction budget: seconds after which no new deformation attempt starts; the best attempt so far "
+                  "is then certified, or the failure lists what was tried (0: no limit)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--keep-failed", opts->keep_failed,
@@ -181,8 +183,8 @@ void register_construct(CLI::App& app) {
                   "uncertified_polycube.mesh (boundary labels as triangle references), for diagnosis");
   add_expert_options(*sub, {
       sub->add_option("--predeform-retry", c.predeform_retry,
-                      "When every attempt fails (and --predeform is 0), run them again with a pre-deformation of "
-                      "this many iterations and estimate-driven unfolding (0: never)")
+                      "When --predeform is 0, also plan the attempts on the model pre-deformed by this many "
+                      "iterations, with estimate-driven unfolding (0: never); the attempts run most promising first")
           ->capture_default_str()
           ->check(CLI::NonNegativeNumber),
       sub->add_option("--smooth", c.labeling.smoothing_rounds,
@@ -237,11 +239,18 @@ void register_construct(CLI::App& app) {
           ->capture_default_str()
           ->check(CLI::NonNegativeNumber),
   });
-  // Fault injection for the tests of --keep-failed: hidden from --help.
-  sub->add_option("--inject-failure", opts->inject_failure, "Testing only: treat the result as not certified")
-      ->check(CLI::IsMember({"certify"}))
+  // Fault injection for the tests of --keep-failed and of the fallback attempts: hidden from --help.
+  sub->add_option("--inject-failure", opts->inject_failure,
+                  "Testing only: 'certify' treats the result as not certified, 'attempt-N' the first N attempts as "
+                  "failed")
+      ->check(CLI::IsMember({"certify", "attempt-1", "attempt-2"}))
       ->group("");
-  sub->callback([opts] { run_construct(*opts); });
+  sub->callback([opts] {
+    opts->construct.on_attempt = attempt_progress();
+    if (opts->inject_failure.rfind("attempt-", 0) == 0)
+      opts->construct.inject_failed_attempts = std::stoi(opts->inject_failure.substr(8));
+    run_construct(*opts);
+  });
 }
 
 }  // namespace polycube::cli

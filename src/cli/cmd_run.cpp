@@ -49,6 +49,11 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
       {"corners", r.corners},
       {"isometric_average", r.isometric_average},
       {"isometric_max", r.isometric_max},
+      {"construct_attempt", r.construct_attempt},
+      {"construct_attempts", r.construct_attempts},
+      {"simplify_step", r.simplify_step},
+      {"simplify_tried", r.simplify_tried},
+      {"frozen_corners", r.frozen_corners},
       {"hex_domains_before", r.hex_domains_before},
       {"hex_domains_after", r.hex_domains_after},
       {"quad_domains_before", r.quad_domains_before},
@@ -73,11 +78,12 @@ std::string summary_table(const pipeline::RunResult& r) {
     std::string what;
     if (!s.ok) what = "FAILED";
     else if (s.name == "construct")
-      what = fmt::format("{} tets, {} charts, {} corners, isometric avg {} max {}", r.tets, r.charts, r.corners,
-                         figure(r.isometric_average), figure(r.isometric_max));
+      what = fmt::format("{} tets, {} charts, {} corners, isometric avg {} max {}; {} ({} attempt(s) run)", r.tets,
+                         r.charts, r.corners, figure(r.isometric_average), figure(r.isometric_max),
+                         r.construct_attempt, r.construct_attempts);
     else if (s.name == "simplify")
-      what = fmt::format("#D {} -> {}, #dom {} -> {}", r.hex_domains_before, r.hex_domains_after,
-                         r.quad_domains_before, r.quad_domains_after);
+      what = fmt::format("{}: #D {} -> {}, #dom {} -> {}", r.simplify_step, r.hex_domains_before,
+                         r.hex_domains_after, r.quad_domains_before, r.quad_domains_after);
     else if (s.name == "hexmesh")
       what = fmt::format("scale {:.4g}: {} hexes, {} quads; mSJ {} aSJ {}, {} inverted", r.grid_scale, r.hexes,
                          r.quads, figure(r.msj_gridded), figure(r.asj_gridded), count(r.inverted_gridded));
@@ -100,6 +106,7 @@ void run_run(RunCliOptions o) {
   o.run.simplify = !o.no_simplify;
   o.run.optimize = !o.no_optimize;
   const bool show = !global_options().quiet && !global_options().json;
+  o.run.construct.on_attempt = attempt_progress();
   o.run.on_stage = [show](int i, int n, const std::string& name) {
     if (show) std::fprintf(stderr, "[%d/%d] %s\n", i, n, name.c_str());
   };
@@ -153,7 +160,8 @@ void register_run(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--time-limit", c.time_limit,
-                  "Seconds after which the construction starts no new labeling/deformation attempt (0: no limit)")
+                  "Construction budget: seconds after which no new deformation attempt starts; the best attempt so far "
+                  "is then certified, or the failure lists what was tried (0: no limit)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--lambda-min", opts->run.simplify_options.align.lambda_min,
@@ -162,7 +170,8 @@ void register_run(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   // Fault injection for the tests (pipeline.h, RunOptions::inject_failure): hidden from --help.
   sub->add_option("--inject-failure", opts->run.inject_failure, "Testing only: make this stage fail at its start")
-      ->check(CLI::IsMember({"input", "construct", "simplify", "hexmesh", "optimize", "quality"}))
+      ->check(CLI::IsMember({"input", "construct", "simplify", "hexmesh", "optimize", "quality", "simplify-step-1",
+                             "simplify-step-2", "simplify-step-3"}))
       ->group("");
   sub->callback([opts] { run_run(*opts); });
 }

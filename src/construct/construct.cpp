@@ -86,18 +86,16 @@ class Predeformations {
   std::map<int, PredeformResult> cache_;
 };
 
-//! A labeling for one attempt: graph cut, repair to validity, then the optional local moves;
-//! with the fast polycube estimate of the result (for the log).
+//! A labeling for one attempt: graph cut and repair to validity, with the fast polycube
+//! estimate of the result (what the attempts are ordered by).
 struct AttemptLabeling {
   RepairResult repair;
   PolycubeEstimate estimate;
   bool valid = false;
 };
 
-AttemptLabeling label_for_attempt(const core::TriMesh& s, const std::vector<core::Vec3>& shape,
-                                  const LabelingOptions& lopt, const Attempt& attempt, const ConstructOptions& o,
+AttemptLabeling label_for_attempt(const core::TriMesh& s, const LabelingOptions& lopt, const ConstructOptions& o,
                                   ConstructTimes& seconds) {
-  auto& log = core::logger();
   AttemptLabeling out;
   core::Stopwatch clock;
   const LabelingResult lab = graph_cut_labeling(s, lopt);
@@ -106,11 +104,24 @@ AttemptLabeling label_for_attempt(const core::TriMesh& s, const std::vector<core
   RepairOptions ropt = o.repair;
   ropt.energy = lopt;
   out.repair = repair_labeling(s, lab.labels, ropt);
-  RepairResult& rep = out.repair;
-  if (!rep.valid()) {
-    seconds.repair += clock.seconds();
-    return out;
+  if (out.repair.valid()) {
+    out.estimate = estimate_polycube(s, out.repair.labels);
+    core::logger().info("construct: labeling: {} charts, the polycube estimate folds {} triangles ({:.3g}% of the area)",
+                        out.repair.check.layout.num_charts(), out.estimate.flipped.size(),
+                        100.0 * out.estimate.flipped_area);
+    out.valid = true;
   }
+  seconds.repair += clock.seconds();
+  return out;
+}
+
+//! The optional local moves on a valid labeling, run only on the attempt being deformed (they
+//! cost minutes on large models): unfolding against the estimate's folds, straightening the
+//! chart boundaries on `shape` (the pre-deformed surface when there is one).
+void refine_labeling(const core::TriMesh& s, const std::vector<core::Vec3>& shape, const Attempt& attempt,
+                     const ConstructOptions& o, RepairResult& rep, ConstructTimes& seconds) {
+  auto& log = core::logger();
+  const core::Stopwatch clock;
   if (attempt.unfold_moves > 0) {
     UnfoldResult un = unfold_labeling(s, rep.labels, attempt.unfold_moves);
     if (un.moves > 0) {
@@ -129,12 +140,7 @@ AttemptLabeling label_for_attempt(const core::TriMesh& s, const std::vector<core
       rep.check = check_labeling(s, rep.labels);
     }
   }
-  out.estimate = estimate_polycube(s, rep.labels);
   seconds.repair += clock.seconds();
-  log.info("construct: labeling: {} charts, the polycube estimate folds {} triangles ({:.3g}% of the area)",
-           rep.check.layout.num_charts(), out.estimate.flipped.size(), 100.0 * out.estimate.flipped_area);
-  out.valid = true;
-  return out;
 }
 
 //! What one attempt gave.
@@ -164,41 +170,57 @@ void judge(AttemptResult& r) {
                             r.attempt.name(), d.untangle.inverted_after, wrong_facing);
 }
 
-//! Run one attempt: label (on the pre-deformed normals when it has a pre-deformation), repair,
-//! deform, and judge the result.
-AttemptResult run_attempt(const Attempt& attempt, const Model& model, Predeformations& predeformations,
-                          const ConstructOptions& o, ConstructTimes& seconds) {
-  AttemptResult r;
-  r.attempt = attempt;
-  const PredeformResult* pre = attempt.predeform_iterations > 0 ? &predeformations.get(attempt.predeform_iterations) : nullptr;
+//! A planned attempt with its labeling: every attempt is labeled before any is deformed, so
+//! the deformations (minutes each) can run in order of their labelings' promise.
+struct LabeledAttempt {
+  Attempt attempt;
+  AttemptLabeling labeling;
+  const PredeformResult* predeform = nullptr;  //!< owned by the plan's Predeformations
+  std::string failure;                         //!< why there is no valid labeling
+};
+
+//! Label one attempt (on the pre-deformed normals when it has a pre-deformation) and repair.
+LabeledAttempt label_attempt(const Attempt& attempt, const Model& model, Predeformations& predeformations,
+                             const ConstructOptions& o, ConstructTimes& seconds) {
+  LabeledAttempt la;
+  la.attempt = attempt;
+  if (attempt.predeform_iterations > 0) la.predeform = &predeformations.get(attempt.predeform_iterations);
   // The fidelity term reads the normals of the pre-deformed surface (the compactness term
-  // keeps the model's, so chart boundaries stay smooth); the chart boundaries are straightened
-  // on the pre-deformed surface.
+  // keeps the model's, so chart boundaries stay smooth).
   LabelingOptions lopt = o.labeling;
   lopt.compactness = attempt.compactness;
   lopt.penalty.clear();
-  std::vector<core::Vec3> shape = model.boundary.surface.points;
-  if (pre) {
-    lopt.data_normals = triangle_normals(pre->points, model.tris);
+  if (la.predeform) lopt.data_normals = triangle_normals(la.predeform->points, model.tris);
+  la.labeling = label_for_attempt(model.boundary.surface, lopt, o, seconds);
+  const RepairResult& rep = la.labeling.repair;
+  if (!la.labeling.valid)
+    la.failure = fmt::format("{}: no valid labeling ({} defect(s): {})", attempt.name(), rep.check.defects.size(),
+                             defects_text(rep.check, 2));
+  return la;
+}
+
+//! Deform a labeled attempt (from its pre-deformed positions when it has some) and judge it.
+AttemptResult deform_attempt(const LabeledAttempt& la, const Model& model, const ConstructOptions& o,
+                             ConstructTimes& seconds) {
+  AttemptResult r;
+  r.attempt = la.attempt;
+  RepairResult rep = la.labeling.repair;
+  r.repair_moves = rep.moves;
+  std::vector<core::Vec3> shape = model.boundary.surface.points;  // the chart boundaries are straightened on it
+  if (const PredeformResult* pre = la.predeform) {
     for (std::size_t i = 0; i < shape.size(); ++i) shape[i] = pre->points[model.boundary.vertex_map[i]];
     r.predeform = PredeformResult{{}, pre->iterations, pre->misalignment_before, pre->misalignment_after,
                                   pre->inverted, pre->seconds};  // its figures, not its points
   }
-  const AttemptLabeling labeling = label_for_attempt(model.boundary.surface, shape, lopt, attempt, o, seconds);
-  const RepairResult& rep = labeling.repair;
-  r.repair_moves = rep.moves;
-  if (!labeling.valid) {
-    r.failure = fmt::format("{}: no valid labeling ({} defect(s): {})", attempt.name(), rep.check.defects.size(),
-                            defects_text(rep.check, 2));
-    return r;
-  }
-  core::logger().info("construct: attempt ({}): labeling valid ({} charts, estimate folds {} triangles)", attempt.name(),
-                      rep.check.layout.num_charts(), labeling.estimate.flipped.size());
+  refine_labeling(model.boundary.surface, shape, la.attempt, o, rep, seconds);
+  core::logger().info("construct: attempt ({}): labeling valid ({} charts)", la.attempt.name(),
+                      rep.check.layout.num_charts());
   try {
-    r.deformation = deform_to_polycube(model.mesh, model.tris, rep.labels, o.deform, pre ? &pre->points : nullptr);
+    r.deformation = deform_to_polycube(model.mesh, model.tris, rep.labels, o.deform,
+                                       la.predeform ? &la.predeform->points : nullptr);
   } catch (const UnrealizableLabeling& e) {
-    r.failure = fmt::format("{}: {}", attempt.name(), e.what());
-    core::logger().info("construct: attempt ({}): {}", attempt.name(), e.what());
+    r.failure = fmt::format("{}: {}", la.attempt.name(), e.what());
+    core::logger().info("construct: attempt ({}): {}", la.attempt.name(), e.what());
     return r;
   }
   const DeformResult& d = *r.deformation;
@@ -212,26 +234,69 @@ AttemptResult run_attempt(const Attempt& attempt, const Model& model, Predeforma
   return r;
 }
 
-//! Run the plan until an attempt is valid; keep the attempt with the fewest failures (the
-//! first valid one). `failures` lists why the others failed.
+//! Label every attempt of the plan; the ones without a valid labeling are dropped (their
+//! reason goes to `failures`).
+std::vector<LabeledAttempt> label_plan(const std::vector<Attempt>& plan, const Model& model,
+                                       Predeformations& predeformations, const ConstructOptions& o,
+                                       ConstructTimes& seconds, std::string& failures) {
+  std::vector<LabeledAttempt> labeled;
+  for (const Attempt& attempt : plan) {
+    LabeledAttempt la = label_attempt(attempt, model, predeformations, o, seconds);
+    if (la.labeling.valid)
+      labeled.push_back(std::move(la));
+    else
+      append(failures, la.failure);
+  }
+  return labeled;
+}
+
+//! Order the labeled attempts by their chance of success. The plan's first attempt (the
+//! user's labeling) stays first: it certifies every shared model, whatever its estimate folds
+//! (fandisk's folds 5.8 % of the area and succeeds; bench/RESULTS.md). The fallbacks follow
+//! by the fast estimate's folded area, the surface the deformation will have to unfold: on the
+//! models where the first attempt fails, the plan's own order tried the labelings that fold
+//! most first. Equal areas keep the plan's order.
+void order_by_promise(std::vector<LabeledAttempt>& labeled, const Attempt& first) {
+  auto begin = labeled.begin();
+  if (begin != labeled.end() && begin->attempt == first) ++begin;
+  std::stable_sort(begin, labeled.end(), [](const LabeledAttempt& a, const LabeledAttempt& b) {
+    return a.labeling.estimate.flipped_area < b.labeling.estimate.flipped_area;
+  });
+}
+
+//! The order the attempts will be deformed in, with their estimates (for the log).
+void log_order(const std::vector<LabeledAttempt>& labeled) {
+  std::string order;
+  for (const LabeledAttempt& la : labeled)
+    append(order, fmt::format("{} ({:.3g}% folded)", la.attempt.name(), 100.0 * la.labeling.estimate.flipped_area));
+  core::logger().info("construct: attempts in order: {}", order);
+}
+
+//! Run the plan: label every attempt, order them (order_by_promise), then deform them in turn
+//! until one is valid; keep the attempt with the fewest failures (the first valid one).
+//! `failures` lists why the others failed.
 std::optional<AttemptResult> run_plan(const std::vector<Attempt>& plan, const Model& model, const ConstructOptions& o,
                                       const core::Stopwatch& clock, ConstructResult& res, std::string& failures) {
   Predeformations predeformations(model, o, res.seconds);
+  std::vector<LabeledAttempt> labeled = label_plan(plan, model, predeformations, o, res.seconds, failures);
+  if (!plan.empty()) order_by_promise(labeled, plan.front());
+  log_order(labeled);
   std::optional<AttemptResult> kept;
-  bool retry_announced = false;
-  for (const Attempt& attempt : plan) {
-    if (res.attempts >= o.max_attempts) break;
+  const int count = static_cast<int>(std::min<std::size_t>(labeled.size(), static_cast<std::size_t>(o.max_attempts)));
+  for (int i = 0; i < count; ++i) {
     if (res.attempts > 0 && o.time_limit > 0 && clock.seconds() > o.time_limit) {
       append(failures, fmt::format("time limit of {:g} s reached after {} attempt(s)", o.time_limit, res.attempts));
       break;
     }
-    if (attempt.retry && !retry_announced) {
-      core::logger().info("construct: every attempt failed; again with a pre-deformation of {} iterations",
-                          attempt.predeform_iterations);
-      retry_announced = true;
-    }
+    const LabeledAttempt& la = labeled[static_cast<std::size_t>(i)];
+    if (o.on_attempt) o.on_attempt(i + 1, count, la.attempt, clock.seconds());
     ++res.attempts;
-    AttemptResult r = run_attempt(attempt, model, predeformations, o, res.seconds);
+    AttemptResult r = deform_attempt(la, model, o, res.seconds);
+    if (i < o.inject_failed_attempts && r.valid) {
+      r.valid = false;
+      r.failures = 1;
+      r.failure = la.attempt.name() + ": injected failure";
+    }
     if (!r.failure.empty()) append(failures, r.failure);
     if (r.deformation && (!kept || r.valid || r.failures < kept->failures)) kept = std::move(r);
     if (kept && kept->valid) break;
@@ -333,6 +398,7 @@ ConstructResult construct_from_prepared(const core::TetMesh& input, const Constr
   const Model model = rotated_model(input, o, res.axis_rotation);
   std::string failures;
   const std::optional<AttemptResult> kept = run_plan(plan_attempts(o), model, o, clock, res, failures);
+  res.tried = failures;
   if (!kept) throw core::SolverError("no valid polycube labeling reached: " + failures);
   if (!kept->valid) core::logger().warn("construct: every attempt left inverted tets ({})", failures);
   report_attempt(*kept, res);

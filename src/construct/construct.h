@@ -15,11 +15,22 @@
 #include "core/types.h"
 #include "solve/untangle.h"
 
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace polycube::construct {
+
+//! One run of labeling, repair and deformation in construct's plan (see construct_from_prepared()).
+struct Attempt {
+  int predeform_iterations = 0;   //!< pre-deformation the labeling and the deformation start from (0: none)
+  int unfold_moves = 0;           //!< ConstructOptions::unfold_moves of this attempt
+  double compactness = 1.0;       //!< the labeling's compactness
+  bool retry = false;             //!< of the pre-deformed pass (ConstructOptions::predeform_retry)
+  [[nodiscard]] std::string name() const;  //!< e.g. "pre-deformed, compactness 2"
+  friend bool operator==(const Attempt&, const Attempt&) = default;
+};
 
 //! Options of construct_polycube(). The first group is what a user sets; the rest are expert
 //! settings of the steps (ARCHITECTURE §6.2), documented with the `construct --help-expert`
@@ -33,13 +44,16 @@ struct ConstructOptions {
   //! Rotate the model so its normals cluster on the axes (orientation.h) before the labeling;
   //! the map keeps the input's model positions, the polycube is in the rotated frame.
   bool align_axes = true;
-  //! No new attempt starts after this many seconds (0: no limit; a running attempt finishes).
-  double time_limit = 0;
+  //! No new attempt starts after this many seconds (0: no limit; a running attempt finishes);
+  //! the best attempt so far is then certified, or the failure lists what was tried.
+  double time_limit = 900;
+  //! Called when an attempt's deformation starts: (1-based index, attempts planned, the
+  //! attempt, seconds since the construction started). For progress lines.
+  std::function<void(int, int, const Attempt&, double)> on_attempt;
 
   // Expert settings.
-  //! When every attempt fails and `predeform` is off: run the attempts again with a
-  //! pre-deformation of this many iterations (0: never) and at least
-  //! `predeform_retry_unfold_moves` unfolding moves.
+  //! When `predeform` is off: plan the attempts a second time on a model pre-deformed by this
+  //! many iterations (0: never), with at least `predeform_retry_unfold_moves` unfolding moves.
   int predeform_retry = 30;
   int predeform_retry_unfold_moves = 50;
   RepairOptions repair;                  //!< its `energy` is replaced by `labeling`
@@ -60,21 +74,18 @@ struct ConstructOptions {
   //! Surface inputs: when TetGen's mesh (without a volume bound) has fewer tets than this, the
   //! surface is tetrahedralized again with a volume bound asking for about this many (0: never).
   int min_tets = 10000;
-  int max_attempts = 8;             //!< labeling + deformation runs in all, at most
+  int max_attempts = 8;             //!< deformations in all, at most
+  //! Testing only: the first this many deformed attempts count as failed whatever they gave,
+  //! so the tests reach the fallback attempts and the budget on small inputs (the hidden
+  //! `construct --inject-failure attempt-N`).
+  int inject_failed_attempts = 0;
 };
 
-//! One run of labeling, repair and deformation in construct's plan (see construct_from_prepared()).
-struct Attempt {
-  int predeform_iterations = 0;   //!< pre-deformation the labeling and the deformation start from (0: none)
-  int unfold_moves = 0;           //!< ConstructOptions::unfold_moves of this attempt
-  double compactness = 1.0;       //!< the labeling's compactness
-  bool retry = false;             //!< part of the pre-deformed retry (the first attempts all failed)
-  [[nodiscard]] std::string name() const;  //!< e.g. "pre-deformed, compactness 2"
-};
-
-//! The attempts construct runs, in order, until one gives a valid map: the compactness
-//! schedule (1, then the retry factors) on the options' labeling; then, when no
-//! pre-deformation was asked for, the same schedule on a pre-deformed labeling.
+//! The attempts construct plans: the compactness schedule (1, then the retry factors) on the
+//! options' labeling; then, when no pre-deformation was asked for, the same schedule on a
+//! pre-deformed labeling. Construct labels them all, then deforms the first, then the others
+//! in order of their labelings' promise (the fast estimate's folded area; the plan's order
+//! between equals) until one gives a valid map.
 std::vector<Attempt> plan_attempts(const ConstructOptions& options);
 
 //! Wall time of each stage (seconds).
@@ -107,7 +118,8 @@ struct ConstructResult {
   double fidelity = 0;              //!< area-weighted mean of 1 − n·axis (model normals)
   int repair_moves = 0;             //!< moves made by the labeling repair of the kept attempt
   Attempt attempt;                  //!< the attempt whose map this is
-  int attempts = 0;                 //!< attempts run
+  int attempts = 0;                 //!< attempts deformed
+  std::string tried;                //!< why the other attempts failed ("; "-separated; empty: none did)
   PredeformResult predeform;        //!< figures of the kept attempt's pre-deformation (points cleared)
   AxisRotation axis_rotation;       //!< rotation applied before the labeling (identity: none)
   int inverted_after_linear = 0;    //!< tets inverted after the linear step (before untangling)
@@ -146,9 +158,9 @@ ConstructResult construct_polycube(const core::TriMesh& surface, const Construct
 ConstructResult construct_polycube(core::TetMesh mesh, const ConstructOptions& options = {});
 
 //! Label, repair, deform and certify a prepared tet mesh (boundary refined, positively
-//! oriented): the attempts of plan_attempts() in turn until one leaves a valid map (or the
-//! time limit or max_attempts is reached); the attempt with the fewest failures is kept and
-//! certified.
+//! oriented): the attempts of plan_attempts(), labeled, then deformed most promising first until
+//! one leaves a valid map (or the time limit or max_attempts is reached); the attempt with the
+//! fewest failures is kept and certified.
 //! \throw as construct_polycube
 ConstructResult construct_from_prepared(const core::TetMesh& mesh, const ConstructOptions& options = {});
 

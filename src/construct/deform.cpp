@@ -163,6 +163,10 @@ class Untangling {
                         bf.chains, bf.chart_step.untangled ? "untangled" : "tangled", bf.charts_inverted,
                         bf.chart_step.seconds, bf.volume_step.untangled ? "untangled" : "tangled", bf.tets_inverted,
                         bf.volume_step.seconds, bf.valid ? "" : ": ", bf.reason);
+    if (!bf.locked_triangles.empty() && unlocks_ < kMaxUnlocks && unlock(bf.locked_triangles)) {
+      ++unlocks_;
+      return place_boundary_first();
+    }
     if (bf.valid) {
       P_ = valid;
       mapping::UntangleMapOptions relax = map_options_;
@@ -186,6 +190,38 @@ class Untangling {
     return Placed::Failed;
   }
 
+  //! Split the edges of the locked chart triangles that cross their chart (their ends are not
+  //! on one polycube edge): each midpoint is free in the chart plane, so the 2D step can turn
+  //! the triangles around. The positions P_ get the midpoints (chart coordinates stay exact).
+  //! False when there is no such edge.
+  bool unlock(const std::vector<int>& locked) {
+    const std::vector<int>& group = lm_.charts.vertex_group;
+    std::vector<std::array<int, 2>> edges;
+    for (int f : locked) {
+      const Tri& t = lm_.boundary[static_cast<std::size_t>(f)];
+      for (int i = 0; i < 3; ++i) {
+        const int u = t[i], w = t[(i + 1) % 3];
+        int shared = 0;
+        for (int a = 0; a < 3; ++a) {
+          const int g = group[3 * static_cast<std::size_t>(u) + a];
+          shared += g >= 0 && g == group[3 * static_cast<std::size_t>(w) + a];
+        }
+        if (shared < 2) edges.push_back({std::min(u, w), std::max(u, w)});
+      }
+    }
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    const int split = edges.empty() ? 0 : mapping::split_edges(lm_, edges, &P_);
+    core::logger().info("deform: {} chart triangles on polycube edges only face away: {} of their edges split",
+                        locked.size(), split);
+    if (split == 0) return false;
+    res_.split_edges += split;
+    mapping::refresh_boundary(lm_);
+    mapping::update_charts(lm_);
+    return true;
+  }
+
+  static constexpr int kMaxUnlocks = 2;
   const DeformOptions& o_;
   LabeledTetMesh& lm_;
   std::vector<Vec3>& P_;
@@ -193,6 +229,7 @@ class Untangling {
   mapping::UntangleMapOptions map_options_;
   bool use_boundary_first_;
   int placements_ = 0;  // boundary-first placements retried after a refinement
+  int unlocks_ = 0;     // placements retried after unlock()
 };
 
 //! Step 4 in rounds: when tets stay inverted, refine locally (split every edge of those tets)

@@ -148,7 +148,10 @@ bool place_charts(const std::vector<Vec3>& points, const std::vector<Tri>& tris,
     }
     bool locked = true;
     for (int v : t) locked = locked && axes_mask(vertex_group, v) != (1 << a);
-    if (locked && !core::faces_label(Q, t, labels[f])) ++res.locked_inverted;
+    if (locked && !core::faces_label(Q, t, labels[f])) {
+      ++res.locked_inverted;
+      res.locked_triangles.push_back(f);
+    }
   }
   if (res.locked_inverted > 0) {
     res.reason = fmt::format("{} chart triangles with all vertices on polycube edges face away", res.locked_inverted);

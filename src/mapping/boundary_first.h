@@ -32,6 +32,10 @@ struct BoundaryFirstResult {
   int charts_inverted = 0;           //!< chart triangles facing away after the 2D step
   int tets_inverted = 0;             //!< tets with det <= 0 after the volume step
   int locked_inverted = 0;           //!< of those, tets or triangles whose every vertex was fixed
+  //! Chart triangles whose three vertices all sit on polycube edges (so the chain placement
+  //! alone decides their orientation) and that face away: the placement stops before the 2D
+  //! step. Splitting their edges that cross the chart frees a vertex in its plane.
+  std::vector<int> locked_triangles;
   solve::UntangleResult chart_step;  //!< the 2D untangling's report
   solve::UntangleResult volume_step; //!< the volume untangling's report
   std::string reason;                //!< why it failed (empty when valid)

@@ -16,6 +16,7 @@
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -107,7 +108,9 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   const core::Stopwatch clock;
   RunResult r;
   if (o.target_hexes <= 0) throw core::InputError("the target number of hexes must be positive");
-  if (!o.inject_failure.empty() &&
+  const bool injects_step = o.inject_failure == "simplify-step-1" || o.inject_failure == "simplify-step-2" ||
+                            o.inject_failure == "simplify-step-3";
+  if (!o.inject_failure.empty() && !injects_step &&
       std::find(std::begin(kStages), std::end(kStages), o.inject_failure) == std::end(kStages))
     throw core::InputError("inject_failure: no stage named " + o.inject_failure);
   std::error_code ec;
@@ -127,6 +130,8 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   run.stage("construct", [&] {
     const construct::ConstructResult c = construct_from_input(in, input, o.construct);
     r.tets = c.map.num_tets();
+    r.construct_attempt = c.attempt.name();
+    r.construct_attempts = c.attempts;
     r.charts = c.charts;
     r.corners = c.corners;
     r.isometric_average = c.isometric_average;
@@ -138,7 +143,8 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
     map = c.map;
   });
 
-  // 3. simplification
+  // 3. simplification (with its fallbacks: simplify.h)
+  mesh::GridSizing grid_sizing = o.grid_sizing;
   if (o.simplify)
     run.stage("simplify", [&] {
       // The lattice of the simplification is the coarsest hex mesh: when the target asks for
@@ -153,17 +159,27 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
           so.align.auto_resolution = std::clamp(std::round(res), 4.0, so.align.auto_resolution);
         }
       }
+      if (o.inject_failure.rfind("simplify-step-", 0) == 0)
+        so.inject_failed_steps = std::stoi(o.inject_failure.substr(std::string("simplify-step-").size()));
       const simplify::SimplifyResult s = simplify::simplify_map(map, so);
+      r.simplify_step = simplify::step_name(s.step);
+      r.simplify_tried = s.tried;
+      r.frozen_corners = s.frozen_corners;
       r.hex_domains_before = s.before.hex_domains;
-      r.hex_domains_after = s.after.hex_domains;
       r.quad_domains_before = s.before.quad_domains;
-      r.quad_domains_after = s.after.quad_domains;
       if (!s.fit.certified) {
-        std::string why;
-        for (const auto& f : s.fit.failures) why += (why.empty() ? "" : "; ") + f;
-        throw core::GeometryError("the simplified map could not be certified: " + why +
-                                  " (run with --no-simplify to mesh the unsimplified map)");
+        // Every step failed: the unsimplified map, gridded with the map's own sizing (its
+        // planes are not on one lattice), loses the whole simplification but not the mesh.
+        core::logger().warn("simplify: no step could be certified ({}); meshing the unsimplified map",
+                            fmt::join(s.tried, "; "));
+        r.simplify_step = "unsimplified";
+        r.hex_domains_after = s.before.hex_domains;
+        r.quad_domains_after = s.before.quad_domains;
+        grid_sizing = mesh::GridSizing::Map;
+        return;
       }
+      r.hex_domains_after = s.after.hex_domains;
+      r.quad_domains_after = s.after.quad_domains;
       fs::create_directories(out_dir / "simplify");
       io::write_polycube_map(out_dir / "simplify" / "model.mesh", out_dir / "simplify" / "polycube.mesh", s.fit.map);
       wrote(out_dir / "simplify" / "model.mesh");
@@ -177,7 +193,7 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   run.stage("hexmesh", [&] {
     mesh::GridOptions go;
     go.target_hexes = o.target_hexes;
-    go.sizing = o.grid_sizing;
+    go.sizing = grid_sizing;
     mesh::GridResult g = mesh::grid_polycube(map, go);
     if (!g.snapping.ok())
       throw core::GeometryError("snapping the polycube to the lattice broke it: " + g.snapping.summary());

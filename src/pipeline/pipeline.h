@@ -41,8 +41,9 @@ struct RunOptions {
   std::function<void(int, int, const std::string&)> on_stage;
   //! Fault injection, for tests of the failure handling only (the hidden `--inject-failure`
   //! option of `polycube run`): the stage of this name fails as soon as it starts, with a
-  //! core::GeometryError "injected failure", exactly as a stage that could not reach a result.
-  //! Empty (the default): never.
+  //! core::GeometryError "injected failure", exactly as a stage that could not reach a result;
+  //! "simplify-step-N": the first N steps of the simplification count as failed (its
+  //! fallbacks, simplify.h). Empty (the default): never.
   std::string inject_failure;
 };
 
@@ -69,7 +70,12 @@ struct RunResult {
   // construct
   int tets = -1, charts = -1, corners = -1;
   double isometric_average = -1, isometric_max = -1;
+  std::string construct_attempt;       //!< the construction attempt whose map was kept
+  int construct_attempts = -1;         //!< attempts deformed
   // simplify (#D, #dom before/after; without simplification both are the map's own counts)
+  std::string simplify_step;           //!< the step that gave the map (simplify::step_name, or "unsimplified")
+  std::vector<std::string> simplify_tried;  //!< why the earlier steps failed
+  int frozen_corners = -1;             //!< corners the "fewer alignments" step froze
   int hex_domains_before = -1, hex_domains_after = -1;
   int quad_domains_before = -1, quad_domains_after = -1;
   // hexmesh

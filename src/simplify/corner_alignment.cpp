@@ -282,6 +282,8 @@ double auto_scale(const structure::PolycubeStructure& s, double resolution) {
 AlignResult align_corners(const structure::PolycubeStructure& s, const AlignOptions& opt) {
   if (opt.scale < 0.0 || !std::isfinite(opt.scale)) throw core::InputError("simplify: scale must be >= 0 (0 = automatic)");
   if (!(opt.lambda_min >= 0.0)) throw core::InputError("simplify: lambda-min must be >= 0");
+  if (!opt.frozen_corners.empty() && opt.frozen_corners.size() != s.corners.size())
+    throw core::InputError("simplify: one frozen flag per corner expected");
   AlignResult res;
   const core::Stopwatch t_sys;
   res.scale = opt.scale > 0.0 ? opt.scale : auto_scale(s, opt.auto_resolution);
@@ -334,7 +336,9 @@ AlignResult align_corners(const structure::PolycubeStructure& s, const AlignOpti
     rec.lambda = lambda;
     const core::Stopwatch t_pair;
     const auto pos = corner_positions();
-    const auto pairs = pair_corners(s, pos, can_align, exterior, &rec.pairing);
+    auto pairs = pair_corners(s, pos, can_align, exterior, &rec.pairing);
+    if (!opt.frozen_corners.empty())
+      std::erase_if(pairs, [&](const CornerPair& p) { return opt.frozen_corners[p.a] || opt.frozen_corners[p.b]; });
     res.seconds_pairing += t_pair.seconds();
     rec.candidates = static_cast<int>(pairs.size());
     if (pairs.empty()) {

@@ -49,6 +49,9 @@ struct AlignOptions {
   double lambda_min = 0.0;
   int max_iterations = 16;        //!< at most this many alignment iterations (λ ≥ 2^(1-max))
   bool exterior_rule = true;      //!< apply pairing rule 3 (drop pairs whose midpoint is outside)
+  //! #corners (or empty): corners never paired (they keep their own planes; the
+  //! simplification's fallback after a fit that left tets inverted near them).
+  std::vector<char> frozen_corners;
   CornerSystemOptions system;     //!< tolerances of the classes
 };
 

@@ -198,6 +198,54 @@ TEST(ConstructCli, UncertifiedExitsThreeAndKeepFailedWritesTheAttemptReadably) {
   EXPECT_FALSE(fs::exists(dir / "out2"));
 }
 
+//! report.json of a construct output folder.
+nlohmann::json construct_report(const fs::path& out) {
+  std::ifstream jf(out / "report.json");
+  return nlohmann::json::parse(jf);
+}
+
+//! A certified map reads back valid from an output folder.
+void expect_certified_map(const fs::path& out) {
+  const core::PolycubeMap map = io::read_polycube_map(out / "model.mesh", out / "polycube.mesh");
+  const structure::MapDiagnosis d = structure::diagnose_map(map);
+  EXPECT_TRUE(d.valid()) << (d.failures.empty() ? "" : d.failures.front());
+}
+
+// Every small shape certifies in the first attempt, so `--inject-failure attempt-1` counts the
+// first one as failed: the construction goes on with the next attempt of its plan, says so on
+// stderr, and the report names the attempt that gave the map and what was tried before.
+TEST(ConstructCli, AFailedAttemptFallsBackToTheNextAndTheReportNamesBoth) {
+  const fs::path dir = temp_dir("fallback_attempt");
+  write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
+  const CliResult r = construct(dir / "box.obj", dir / "out", "--inject-failure attempt-1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_certified_map(dir / "out");
+  const auto j = construct_report(dir / "out");
+  EXPECT_TRUE(j["certified"].get<bool>());
+  EXPECT_EQ(j["attempts"].get<int>(), 2);
+  EXPECT_NE(j["attempt"].get<std::string>(), "compactness 1");
+  EXPECT_EQ(j["tried"].get<std::string>(), "compactness 1: injected failure");
+  EXPECT_NE(r.err.find("construct attempt 1/"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("construct attempt 2/"), std::string::npos) << r.err;
+}
+
+// Past the time limit no new attempt starts: the best attempt so far (here the first, whose
+// failure was injected but whose map is valid) is certified and kept, and the report says the
+// budget ran out.
+TEST(ConstructCli, PastTheTimeLimitTheBestAttemptSoFarIsKept) {
+  const fs::path dir = temp_dir("budget");
+  write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
+  const CliResult r = construct(dir / "box.obj", dir / "out", "--inject-failure attempt-1 --time-limit 1e-6");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_certified_map(dir / "out");
+  const auto j = construct_report(dir / "out");
+  EXPECT_EQ(j["attempts"].get<int>(), 1);
+  EXPECT_EQ(j["attempt"].get<std::string>(), "compactness 1");
+  EXPECT_NE(j["tried"].get<std::string>().find("time limit of 1e-06 s reached after 1 attempt(s)"), std::string::npos)
+      << j["tried"];
+  EXPECT_EQ(r.err.find("construct attempt 2/"), std::string::npos) << r.err;
+}
+
 //! Options (lines starting with "  -") in a --help text.
 std::vector<std::string> listed_options(const std::string& help) {
   std::vector<std::string> options;

@@ -378,6 +378,41 @@ TEST(RunCli, SimplifyFailureExitsThreeAndKeepsTheConstructedMap) {
   EXPECT_NE(r.out.find("| simplify |"), std::string::npos) << r.out;
 }
 
+// The simplification's fallbacks (simplify.h), reached by `--inject-failure simplify-step-N`
+// (the first N steps count as failed; a box's fit always certifies): each gives a valid mesh,
+// and the report names the step that gave the map and why the earlier ones failed. When every
+// step fails the unsimplified map is meshed: no simplify/ map is written.
+TEST(RunCli, SimplifyFallsBackStepByStepAndTheReportNamesTheStep) {
+  const fs::path dir = temp_dir("simplify_fallbacks");
+  write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
+  const char* expected[] = {"fewer alignments", "unaligned", "unsimplified"};
+  for (int n = 1; n <= 3; ++n) {
+    SCOPED_TRACE(n);
+    const fs::path out = dir / ("out" + std::to_string(n));
+    const CliResult r = run(dir / "box.obj", out, "--hexes 200 --inject-failure simplify-step-" + std::to_string(n));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = read_report(out);
+    EXPECT_TRUE(j["ok"].get<bool>());
+    EXPECT_EQ(j["construct_attempt"], "compactness 1");
+    EXPECT_EQ(j["construct_attempts"], 1);
+    EXPECT_EQ(j["simplify_step"], expected[n - 1]);
+    ASSERT_EQ(j["simplify_tried"].size(), static_cast<std::size_t>(n));
+    EXPECT_EQ(j["simplify_tried"][0], "aligned: injected failure");
+    EXPECT_EQ(j["final"]["inverted"], 0);
+    EXPECT_GT(j["hexes"].get<int>(), 0);
+    // A box is one block whatever the step: nothing is lost.
+    EXPECT_EQ(j["hex_domains_before"], 1);
+    EXPECT_EQ(j["hex_domains_after"], 1);
+    EXPECT_NE(r.out.find(std::string("| simplify | ")), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(expected[n - 1]), std::string::npos) << r.out;
+    expect_valid_map(out / "construct", j);
+    if (n < 3)
+      expect_valid_map(out / "simplify", j);
+    else
+      EXPECT_FALSE(fs::exists(out / "simplify"));
+  }
+}
+
 // The lattice of 2e9 hexes is beyond the gridding's bound (mesh/grid.h, max_lattice_points):
 // the request cannot be met for this polycube, which only the hexmesh stage can tell. The file
 // is fine, so not exit 2; the command line is well formed, so not exit 1: exit 3.

@@ -1,4 +1,5 @@
 // Corner pairing, constraint system and alignment on polycubes built in code (thesis §3.3–3.5).
+#include "core/errors.h"
 #include "simplify/corner_alignment.h"
 #include "simplify/corner_pairing.h"
 #include "simplify/corner_system.h"
@@ -167,6 +168,24 @@ TEST(CornerAlignment, LambdaMinOneRunsOneIteration) {
   EXPECT_EQ(r.stop_reason, "lambda_min");
   // at lambda = 1 moving a floor (4 corners) by one unit costs more than two unaligned pairs
   EXPECT_EQ(r.planes_after[1], 4);
+}
+
+TEST(CornerAlignment, FrozenCornersAreNeverPaired) {
+  const auto s = structure::extract_structure(test::comb(0.1));
+  AlignOptions o;
+  o.scale = 10.0;
+  const int floor = corner_at(s, core::Vec3(3, 1.1, 0));
+  o.frozen_corners.assign(s.corners.size(), 0);
+  o.frozen_corners[static_cast<std::size_t>(floor)] = 1;
+  const auto r = simplify::align_corners(s, o);
+  for (const auto& p : r.aligned) EXPECT_TRUE(p.a != floor && p.b != floor) << p.a << " " << p.b;
+  // Every corner frozen: nothing is aligned, the corners only go to the lattice.
+  o.frozen_corners.assign(s.corners.size(), 1);
+  const auto none = simplify::align_corners(s, o);
+  EXPECT_TRUE(none.aligned.empty());
+  EXPECT_EQ(none.planes_after, none.planes_before);
+  o.frozen_corners.assign(2, 0);  // one flag per corner, or none
+  EXPECT_THROW(simplify::align_corners(s, o), core::InputError);
 }
 
 // Thesis fig. 3.6: the bump's top (y = 2.9) nearly touches the top bar's underside (y = 3).

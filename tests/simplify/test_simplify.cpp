@@ -47,6 +47,50 @@ TEST(Simplify, CombIsFittedCertifiedAndCoarser) {
   EXPECT_EQ(y_floor1, y_floor2);
 }
 
+// The fallbacks (simplify.h), reached by counting the first steps as failed: each step gives
+// up alignments, so the coarsening lost shows in #D; every step's map is certified.
+TEST(Simplify, FallbackStepsGiveUpAlignmentsAndSayWhatWasLost) {
+  const auto map = test::comb(0.1);
+  simplify::SimplifyOptions o;
+  o.align.scale = 10.0;
+  const auto aligned = simplify::simplify_map(map, o);
+  ASSERT_TRUE(aligned.fit.certified);
+  EXPECT_EQ(aligned.step, simplify::SimplifyStep::Aligned);
+  EXPECT_TRUE(aligned.tried.empty());
+
+  o.inject_failed_steps = 1;  // nothing inverted to point at: a single alignment iteration
+  const auto fewer = simplify::simplify_map(map, o);
+  ASSERT_TRUE(fewer.fit.certified);
+  EXPECT_EQ(fewer.step, simplify::SimplifyStep::FewerAlignments);
+  ASSERT_EQ(fewer.tried.size(), 1u);
+  EXPECT_EQ(fewer.tried[0], "aligned: injected failure");
+  EXPECT_EQ(fewer.alignment.iterations.size(), 1u);
+  EXPECT_EQ(fewer.alignment.planes_after[1], 4);  // the notch floors stay apart (see LambdaMinOne...)
+  EXPECT_GT(fewer.after.hex_domains, aligned.after.hex_domains);
+
+  o.inject_failed_steps = 2;
+  const auto unaligned = simplify::simplify_map(map, o);
+  ASSERT_TRUE(unaligned.fit.certified);
+  EXPECT_EQ(unaligned.step, simplify::SimplifyStep::Unaligned);
+  EXPECT_EQ(unaligned.tried.size(), 2u);
+  EXPECT_TRUE(unaligned.alignment.aligned.empty());
+  EXPECT_EQ(unaligned.after.hex_domains, unaligned.before.hex_domains);
+  EXPECT_NO_THROW(structure::validate_map(unaligned.fit.map));
+
+  o.inject_failed_steps = 3;
+  const auto none = simplify::simplify_map(map, o);
+  EXPECT_FALSE(none.fit.certified);
+  EXPECT_EQ(none.step, simplify::SimplifyStep::None);
+  EXPECT_EQ(none.tried.size(), 3u);
+
+  o.inject_failed_steps = 1;
+  o.fallbacks = false;
+  const auto off = simplify::simplify_map(map, o);
+  EXPECT_FALSE(off.fit.certified);
+  EXPECT_EQ(off.step, simplify::SimplifyStep::None);
+  EXPECT_EQ(off.tried.size(), 1u);
+}
+
 TEST(Simplify, DeterministicIncludingTheFit) {
   const auto map = test::grid_polycube({0, 1, 2, 3, 4, 5}, {0, 1.0, 1.1, 3}, {0, 1}, [](int i, int j, int) { return i == 1 ? j == 0 : i == 3 ? j <= 1 : true; }, [](const core::Vec3& p) { return core::Vec3(p.x() + 0.1 * std::sin(p.y()), p.y() * (1 + 0.05 * p.x()), p.z() + 0.1 * p.x() * p.y()); });
   simplify::SimplifyOptions o;
