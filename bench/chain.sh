@@ -3,7 +3,7 @@
 # and every built-in sample; prints one table (markdown) and writes it, with the machine, to
 # bench/RESULTS.md when --write is given.
 # Usage: bench/chain.sh [--write] [--table-only] [build-dir]
-#   env: HEXES=20000, TIME_LIMIT=60, OUT=out/bench; ONLY="surface/bunny tet/cup ..." runs just
+#   env: HEXES=20000, TIME_LIMIT (construct budget; default: the tool's), OUT=out/bench; ONLY="surface/bunny tet/cup ..." runs just
 #   those models (kind/name; several lanes can share one OUT); --table-only rebuilds the table
 #   from OUT without running anything.
 set -uo pipefail
@@ -23,7 +23,8 @@ root=$(cd "$here/.." && pwd)
 data=${DATA:-$root/../shared/data}
 out=${OUT:-$root/out/bench}
 hexes=${HEXES:-20000}
-limit=${TIME_LIMIT:-60}
+limit_opt=()
+[[ -n "${TIME_LIMIT:-}" ]] && limit_opt=(--time-limit "$TIME_LIMIT")
 if [[ "$build" = /* ]]; then pc=$build/polycube; else pc=$root/$build/polycube; fi
 [[ -x "$pc" ]] || { echo "bench/chain.sh: $pc not found; run make first" >&2; exit 2; }
 mkdir -p "$out"
@@ -41,7 +42,7 @@ for f in "${inputs[@]+"${inputs[@]}"}"; do
   dir="$out/${kind}_$name"
   rm -rf "$dir"
   echo "== $kind/$name" >&2
-  "$pc" -q run "$f" -o "$dir" --hexes "$hexes" --time-limit "$limit" > /dev/null 2> "$dir.stderr"
+  "$pc" -q run "$f" -o "$dir" --hexes "$hexes" "${limit_opt[@]+"${limit_opt[@]}"}" > /dev/null 2> "$dir.stderr"
   echo "   exit $? ($(tail -c 300 "$dir.stderr" | tr '\n' ' '))" >&2
 done
 
@@ -51,21 +52,22 @@ out = sys.argv[1]
 def f(v, spec):
     return "-" if v is None or (isinstance(v, (int, float)) and v < -1.5) or v == -1 else format(v, spec)
 rows = []
-print("| model | #tets | #charts | #corners | #D before | #D after | #dom before | #dom after | #H | mSJ | aSJ | Hausdorff | construct s | simplify s | hexmesh s | optimize s | total s | peak MiB | result |")
-print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+print("| model | #tets | #charts | #corners | #D before | #D after | #dom before | #dom after | #H | mSJ | aSJ | Hausdorff | construct s | simplify s | hexmesh s | optimize s | total s | peak MiB | attempt | simplify step | result |")
+print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|")
 for rep in sorted(glob.glob(os.path.join(out, "*", "report.json"))):
     j = json.load(open(rep))
     name = os.path.basename(os.path.dirname(rep)).replace("_", "/", 1)
     st = {s["stage"]: s["seconds"] for s in j["stages"]}
     fin = j["final"]
     res = "ok" if j["ok"] else "failed at " + j["failure"]["stage"]
-    print("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |".format(
+    print("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |".format(
         name, f(j["tets"], "d"), f(j["charts"], "d"), f(j["corners"], "d"),
         f(j["hex_domains_before"], "d"), f(j["hex_domains_after"], "d"),
         f(j["quad_domains_before"], "d"), f(j["quad_domains_after"], "d"), f(j["hexes"], "d"),
         f(fin["msj"], ".3f"), f(fin["asj"], ".3f"), f(fin["hausdorff_relative"], ".4f"),
         f(st.get("construct"), ".1f"), f(st.get("simplify"), ".1f"), f(st.get("hexmesh"), ".1f"),
-        f(st.get("optimize"), ".1f"), f(j["total_seconds"], ".1f"), f(j["peak_memory_mib"], ".0f"), res))
+        f(st.get("optimize"), ".1f"), f(j["total_seconds"], ".1f"), f(j["peak_memory_mib"], ".0f"),
+        j.get("construct_attempt") or "-", j.get("simplify_step") or "-", res))
 PY
 )
 echo "$table"
@@ -74,7 +76,8 @@ if [[ $write -eq 1 ]]; then
     echo "# Benchmark: the whole chain (\`bench/chain.sh\`)"
     echo
     echo "Machine: $(nproc) cores, $(awk '/MemTotal/ {printf "%.0f GiB", $2/1048576}' /proc/meminfo), $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); $(uname -sr)."
-    echo "Date: $(date -u +%Y-%m-%d). Commit: $(git -C "$root" rev-parse --short HEAD). Options: \`polycube run --hexes $hexes --time-limit $limit\` (defaults otherwise)."
+    echo "Date: $(date -u +%Y-%m-%d). Commit: $(git -C "$root" rev-parse --short HEAD). Options: \`polycube run --hexes $hexes ${limit_opt[*]+${limit_opt[*]}}\` (defaults otherwise)."
+    echo "Fallbacks: the construction attempt kept (the first planned is \"compactness 1\") and the simplification step (\"aligned\" unless it fell back)."
     echo "Hausdorff: final hex boundary vs the input surface, relative to its bounding-box diagonal. mSJ/aSJ: after optimization."
     echo
     echo "$table"

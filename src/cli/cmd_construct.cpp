@@ -174,8 +174,9 @@ void register_construct(CLI::App& app) {
                 "Keep the model's orientation (default: rotate it so its normals cluster on the axes before the "
                 "labeling; the written model keeps the input's positions)");
   sub->add_option("--time-limit", c.time_limit,
-                  "Construction budget: seconds after which no new deformation attempt starts; the best attempt so far "
-                  "is then certified, or the failure lists what was tried (0: no limit)")
+                  "Construction budget in seconds: an attempt with others still planned stops at half of what is left, "
+                  "the last one at the budget; then the best attempt is certified, or the failure lists what was "
+                  "tried (0: no limit, and the result does not depend on the machine's speed)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--keep-failed", opts->keep_failed,

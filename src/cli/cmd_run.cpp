@@ -160,8 +160,9 @@ void register_run(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--time-limit", c.time_limit,
-                  "Construction budget: seconds after which no new deformation attempt starts; the best attempt so far "
-                  "is then certified, or the failure lists what was tried (0: no limit)")
+                  "Construction budget in seconds: an attempt with others still planned stops at half of what is left, "
+                  "the last one at the budget; then the best attempt is certified, or the failure lists what was "
+                  "tried (0: no limit, and the result does not depend on the machine's speed)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   sub->add_option("--lambda-min", opts->run.simplify_options.align.lambda_min,

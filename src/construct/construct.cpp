@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <functional>
 #include <map>
 #include <optional>
 
@@ -201,7 +202,7 @@ LabeledAttempt label_attempt(const Attempt& attempt, const Model& model, Predefo
 
 //! Deform a labeled attempt (from its pre-deformed positions when it has some) and judge it.
 AttemptResult deform_attempt(const LabeledAttempt& la, const Model& model, const ConstructOptions& o,
-                             ConstructTimes& seconds) {
+                             const std::function<bool()>& expired, ConstructTimes& seconds) {
   AttemptResult r;
   r.attempt = la.attempt;
   RepairResult rep = la.labeling.repair;
@@ -215,8 +216,10 @@ AttemptResult deform_attempt(const LabeledAttempt& la, const Model& model, const
   refine_labeling(model.boundary.surface, shape, la.attempt, o, rep, seconds);
   core::logger().info("construct: attempt ({}): labeling valid ({} charts)", la.attempt.name(),
                       rep.check.layout.num_charts());
+  DeformOptions deform = o.deform;
+  deform.untangle.expired = expired;
   try {
-    r.deformation = deform_to_polycube(model.mesh, model.tris, rep.labels, o.deform,
+    r.deformation = deform_to_polycube(model.mesh, model.tris, rep.labels, deform,
                                        la.predeform ? &la.predeform->points : nullptr);
   } catch (const UnrealizableLabeling& e) {
     r.failure = fmt::format("{}: {}", la.attempt.name(), e.what());
@@ -272,6 +275,14 @@ void log_order(const std::vector<LabeledAttempt>& labeled) {
   core::logger().info("construct: attempts in order: {}", order);
 }
 
+//! When an attempt started at `now` must stop (seconds since the construction started; 0: no
+//! limit): at the budget when it is the last allowed attempt, else halfway through what is
+//! left, so that a hopeless attempt leaves time for the others.
+double attempt_deadline(double time_limit, double now, bool others_left) {
+  if (time_limit <= 0) return 0;
+  return others_left ? now + 0.5 * std::max(0.0, time_limit - now) : std::max(time_limit, now);
+}
+
 //! Run the plan: label every attempt, order them (order_by_promise), then deform them in turn
 //! until one is valid; keep the attempt with the fewest failures (the first valid one).
 //! `failures` lists why the others failed.
@@ -291,7 +302,12 @@ std::optional<AttemptResult> run_plan(const std::vector<Attempt>& plan, const Mo
     const LabeledAttempt& la = labeled[static_cast<std::size_t>(i)];
     if (o.on_attempt) o.on_attempt(i + 1, count, la.attempt, clock.seconds());
     ++res.attempts;
-    AttemptResult r = deform_attempt(la, model, o, res.seconds);
+    const double started = clock.seconds();
+    const double deadline = attempt_deadline(o.time_limit, started, i + 1 < count);
+    const std::function<bool()> expired = [&clock, deadline] { return deadline > 0 && clock.seconds() > deadline; };
+    AttemptResult r = deform_attempt(la, model, o, expired, res.seconds);
+    if (deadline > 0 && clock.seconds() > deadline && !r.valid)
+      r.failure += fmt::format(" (stopped at its budget of {:.0f} s)", deadline - started);
     if (i < o.inject_failed_attempts && r.valid) {
       r.valid = false;
       r.failures = 1;

@@ -44,9 +44,12 @@ struct ConstructOptions {
   //! Rotate the model so its normals cluster on the axes (orientation.h) before the labeling;
   //! the map keeps the input's model positions, the polycube is in the rotated frame.
   bool align_axes = true;
-  //! No new attempt starts after this many seconds (0: no limit; a running attempt finishes);
-  //! the best attempt so far is then certified, or the failure lists what was tried.
-  double time_limit = 900;
+  //! Budget of the attempts, in seconds since the construction started (0: none). An attempt
+  //! with others still planned stops (its untangling ends at its best state) halfway through
+  //! what is left, the last one at the budget; no attempt starts past it. The best attempt is
+  //! then certified, or the failure lists what was tried. A run that reaches the budget depends
+  //! on the machine's speed; with 0 the result never does.
+  double time_limit = 1800;
   //! Called when an attempt's deformation starts: (1-based index, attempts planned, the
   //! attempt, seconds since the construction started). For progress lines.
   std::function<void(int, int, const Attempt&, double)> on_attempt;

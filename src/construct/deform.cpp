@@ -116,6 +116,9 @@ class Untangling {
     map_options_.ghost_height = ghost_h;
   }
 
+  //! The caller's time budget ran out (DeformOptions::untangle.expired): no further step.
+  [[nodiscard]] bool expired() const { return o_.untangle.expired && o_.untangle.expired(); }
+
   //! The boundary-first placement is tried before the untangling in the first round.
   [[nodiscard]] bool placement_first() const { return use_boundary_first_ && o_.boundary_first == BoundaryFirst::First; }
 
@@ -130,6 +133,7 @@ class Untangling {
     if (round == 0 && !placement_first) res_.untangle = ur;
     else merge(res_.untangle, ur);
     if (ur.untangled) return Round::Valid;
+    if (expired()) return Round::Stuck;
     // A few tets left: repair them locally, then go back through the global optimizer (from a
     // valid state it stays valid) to spread the distortion, and take its verdict.
     const mapping::LocalRepairResult lr = mapping::repair_locally(lm_, P_, map_options_, o_.local_repair);
@@ -138,7 +142,7 @@ class Untangling {
       merge(res_.untangle, mapping::untangle_globally(lm_, P_, map_options_));
       if (res_.untangle.untangled) return Round::Valid;
     }
-    if (use_boundary_first_ && !placement_first) {
+    if (use_boundary_first_ && !placement_first && !expired()) {
       const Placed placed = place_boundary_first();
       if (placed != Placed::Failed) return placed == Placed::Valid ? Round::Valid : Round::RetryPlacement;
     }
@@ -242,7 +246,7 @@ void untangle_in_rounds(const DeformOptions& o, LabeledTetMesh& lm, std::vector<
     const Untangling::Round outcome = untangling.run(round, placement_first);
     if (outcome == Untangling::Round::Valid) return;
     placement_first = outcome == Untangling::Round::RetryPlacement;
-    if (!placement_first && round >= o.refine_rounds) return;
+    if ((!placement_first && round >= o.refine_rounds) || untangling.expired()) return;
     const int split = mapping::split_edges(lm, inverted_tet_edges(lm, P, o.untangle.min_det_target), &P);
     res.refined_edges += split;
     core::logger().debug("deform: {} tets stay inverted; refinement round {} split {} edges",

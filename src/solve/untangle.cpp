@@ -593,6 +593,7 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
     if (st.min_det < mu) eps = std::max(o.min_epsilon, 2.0 * std::sqrt(mu * (mu - st.min_det)));
     else eps = o.min_epsilon;
     if (o.on_iteration && !o.on_iteration(outer, x, attractions)) break;
+    if (o.expired && o.expired()) break;
   }
   if (st.inverted > best_inverted) {
     y = best_y;

@@ -135,6 +135,9 @@ struct UntangleOptions {
   //! creeping towards 0 from below (ε following it down) counts as progress forever.
   double stall_min_det_rise = 0.0;
   std::vector<Attraction> attractions;  //!< optional extra quadratic terms
+  //! Polled after every outer iteration: true ends the untangling there (the best state is kept,
+  //! as when it stalls). A caller's time budget; empty: never.
+  std::function<bool()> expired;
   NewtonSolver linear_solver = NewtonSolver::Cholesky;  //!< Newton system solver
   int cg_iterations = 100;     //!< ConjugateGradient: iterations per Newton step at most
   double cg_tolerance = 1e-3;  //!< ConjugateGradient: relative residual to stop at
