@@ -9,6 +9,7 @@
 #include "simplify/simplify.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <filesystem>
 #include <memory>
@@ -61,6 +62,9 @@ void run_simplify(const SimplifyCliOptions& o) {
     cons.push_back({{"classes", ax.num_classes()}, {"constraints", ax.constraints.size()},
                     {"before_reduction", ax.constraints_before_reduction}});
   j["axes"] = cons;
+  j["step"] = simplify::step_name(r.step);  // the fallback step that gave the map (simplify.h)
+  j["tried"] = r.tried;
+  j["frozen_corners"] = r.frozen_corners;
   j["fit"] = {{"certified", r.fit.certified}, {"failures", r.fit.failures},
               {"inverted_initial", r.fit.inverted_initial}, {"inverted_final", r.fit.inverted_final},
               {"untangle_iterations", r.fit.untangle_iterations}};
@@ -81,6 +85,9 @@ void run_simplify(const SimplifyCliOptions& o) {
       gain(r.before.hex_domains, r.after.hex_domains), r.before.quad_domains, r.after.quad_domains,
       gain(r.before.quad_domains, r.after.quad_domains), a.iterations.size(), a.stop_reason, a.aligned.size(),
       a.shape_energy, a.max_displacement);
+  if (!r.tried.empty() && r.fit.certified)
+    text += fmt::format("fell back to step \"{}\" ({} corners frozen) after: {}\n", simplify::step_name(r.step),
+                        r.frozen_corners, fmt::join(r.tried, "; "));
   text += fmt::format("time: pairing+alignment+finalization {:.3f} s (constraints {:.3f}, pairing {:.3f}, "
                       "alignment {:.3f}, finalization {:.3f}); fit {:.3f} s, untangle {:.3f} s\n",
                       structure_seconds, a.seconds_system, a.seconds_pairing, a.seconds_solve, a.seconds_finalize,
@@ -101,9 +108,9 @@ void run_simplify(const SimplifyCliOptions& o) {
   io::write_text_atomic(dir / "report.json", j.dump(2) + "\n");
   if (!r.fit.certified) {
     std::string why;
-    for (const auto& f : r.fit.failures) why += (why.empty() ? "" : "; ") + f;
+    for (const auto& f : r.tried.empty() ? r.fit.failures : r.tried) why += (why.empty() ? "" : "; ") + f;
     throw core::GeometryError("simplified map could not be certified (report in " + (dir / "report.json").string() +
-                              ", no map written): " + why);
+                              ", no map written; `run` meshes the unsimplified map then): " + why);
   }
   print_result(j, text);
 }
