@@ -141,6 +141,30 @@ TEST(Untangle, FoldedVertexBecomesValidAndFixedCoordinatesStay) {
   EXPECT_LT(err, 0.05);
 }
 
+// A caller's budget (UntangleOptions::expired) ends the untangling after the iteration that
+// polls it, with the best state so far; the same run without it goes on.
+TEST(Untangle, AnExpiredBudgetStopsAfterOneIteration) {
+  FoldedGrid g = folded_grid();
+  const core::TetMesh ref = test::tetrahedralize(test::hex_grid(3, 3, 3));
+  const Eigen::VectorXd x_init = solve::flatten(g.mesh.points);
+  const solve::LinearReduction R = solve::index_reduction(g.var, g.nvar, x_init);
+  Eigen::VectorXd y0(g.nvar);
+  for (int i = 0; i < 3 * g.mesh.num_points(); ++i)
+    if (g.var[i] >= 0) y0[g.var[i]] = x_init[i];
+  const solve::TetElements el = solve::reference_elements(ref.points, ref.cells);
+  Eigen::VectorXd y = y0;
+  const solve::UntangleResult full = solve::untangle(el, R, y, {});
+  ASSERT_GT(full.iterations, 1);
+  int polls = 0;
+  solve::UntangleOptions o;
+  o.expired = [&polls] { return ++polls >= 1; };
+  y = y0;
+  const solve::UntangleResult cut = solve::untangle(el, R, y, o);
+  EXPECT_EQ(cut.iterations, 1);
+  EXPECT_EQ(polls, 1);
+  EXPECT_LE(cut.inverted_after, cut.inverted_before);
+}
+
 TEST(Untangle, SharedVariableConstraintIsExact) {
   // All interior vertices of the grid with z = 1 share one z variable (a "chart" constraint),
   // and they start tangled.
