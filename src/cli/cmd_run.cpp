@@ -54,6 +54,8 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
       {"simplify_step", r.simplify_step},
       {"simplify_tried", r.simplify_tried},
       {"frozen_corners", r.frozen_corners},
+      {"optimize_fallback", r.optimize_fallback},
+      {"optimize_tried", r.optimize_tried},
       {"hex_domains_before", r.hex_domains_before},
       {"hex_domains_after", r.hex_domains_after},
       {"quad_domains_before", r.quad_domains_before},
@@ -88,7 +90,8 @@ std::string summary_table(const pipeline::RunResult& r) {
       what = fmt::format("scale {:.4g}: {} hexes, {} quads; mSJ {} aSJ {}, {} inverted", r.grid_scale, r.hexes,
                          r.quads, figure(r.msj_gridded), figure(r.asj_gridded), count(r.inverted_gridded));
     else if (s.name == "optimize")
-      what = fmt::format("{} iterations", count(r.iterations_optimize));
+      what = fmt::format("{} iterations{}", count(r.iterations_optimize),
+                         r.optimize_fallback == "none" ? std::string() : ", regridded: " + r.optimize_fallback);
     else if (s.name == "quality")
       what = fmt::format("mSJ {} aSJ {}, {} inverted, #D {}, Hausdorff {} of the bbox diagonal", figure(r.msj),
                          figure(r.asj), count(r.inverted), count(r.final_domains),
@@ -172,7 +175,8 @@ void register_run(CLI::App& app) {
   // Fault injection for the tests (pipeline.h, RunOptions::inject_failure): hidden from --help.
   sub->add_option("--inject-failure", opts->run.inject_failure, "Testing only: make this stage fail at its start")
       ->check(CLI::IsMember({"input", "construct", "simplify", "hexmesh", "optimize", "quality", "simplify-step-1",
-                             "simplify-step-2", "simplify-step-3"}))
+                             "simplify-step-2", "simplify-step-3", "optimize-step-1", "optimize-step-2",
+                             "optimize-step-3"}))
       ->group("");
   sub->callback([opts] { run_run(*opts); });
 }

@@ -94,6 +94,65 @@ class Runner {
   int index_ = 0;
 };
 
+//! Grid the map at about `target` hexes with `sizing`; write hex.mesh and quad.vtk and record
+//! the gridded mesh's figures in r. Returns the hex mesh.
+core::HexMesh grid_and_write(const core::PolycubeMap& map, int target, mesh::GridSizing sizing,
+                             const ConstructInput& in, const std::filesystem::path& out_dir, RunResult& r,
+                             const std::function<void(const std::filesystem::path&)>& wrote) {
+  mesh::GridOptions go;
+  go.target_hexes = target;
+  go.sizing = sizing;
+  mesh::GridResult g = mesh::grid_polycube(map, go);
+  if (!g.snapping.ok())
+    throw core::GeometryError("snapping the polycube to the lattice broke it: " + g.snapping.summary());
+  r.grid_scale = g.scale;
+  r.hexes = static_cast<int>(g.hex_model.cells.size());
+  r.quads = static_cast<int>(g.quad_model.cells.size());
+  const quality::ScaledJacobianSummary sj = quality::scaled_jacobian(g.hex_model);
+  r.inverted_gridded = sj.inverted + sj.invalid;
+  r.msj_gridded = sj.min;
+  r.asj_gridded = sj.average;
+  io::write_mesh(out_dir / "hex.mesh", core::to_mesh_data(g.hex_model));
+  wrote(out_dir / "hex.mesh");
+  quality::ReportOptions qo;
+  qo.structure = true;
+  qo.target = &in.target;
+  const quality::QuadReport qr = quality::quad_report(g.quad_model, qo);
+  write_vtk(out_dir / "quad.vtk", core::to_mesh_data(g.quad_model), qr.fields());
+  wrote(out_dir / "quad.vtk");
+  return std::move(g.hex_model);
+}
+
+std::string fold_summary(const optimize::FoldoverReport& fold) {
+  return fmt::format("{} inverted hexes, {} with a non-positive scaled Jacobian, {} boundary self-intersections",
+                     fold.inverted_hexes, fold.nonpositive_scaled_jacobian, fold.boundary_self_intersections);
+}
+
+//! Optimize the hex mesh in place and run the global fold-over check on the result.
+optimize::FoldoverReport optimize_and_check(core::HexMesh& hex, const ConstructInput& in, const RunOptions& o,
+                                            RunResult& r) {
+  const optimize::OptimizeResult opt = optimize::optimize_hex_mesh(hex, in.target, o.optimize_options);
+  r.iterations_optimize = opt.untangle.iterations + opt.quality.iterations;
+  return optimize::check_foldover(hex);
+}
+
+//! A second gridding for the optimizer when the first one's result fails the fold-over check.
+struct OptimizeFallback {
+  std::string name;
+  int target_hexes;
+  mesh::GridSizing sizing;
+};
+
+//! The fallbacks in order: the map's own sizing (hexes of more even size in the model, so
+//! fewer squashed ones in thin parts), then a grid twice as fine (more room in the parts where
+//! the optimizer stayed stuck).
+std::vector<OptimizeFallback> optimize_fallbacks(int target, mesh::GridSizing sizing) {
+  std::vector<OptimizeFallback> out;
+  if (sizing != mesh::GridSizing::Map) out.push_back({"map sizing", target, mesh::GridSizing::Map});
+  out.push_back({"finer grid (2x hexes)", 2 * target, sizing});
+  return out;
+}
+
 }  // namespace
 
 double RunResult::seconds(const std::string& stage) const {
@@ -109,7 +168,8 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   RunResult r;
   if (o.target_hexes <= 0) throw core::InputError("the target number of hexes must be positive");
   const bool injects_step = o.inject_failure == "simplify-step-1" || o.inject_failure == "simplify-step-2" ||
-                            o.inject_failure == "simplify-step-3";
+                            o.inject_failure == "simplify-step-3" || o.inject_failure == "optimize-step-1" ||
+                            o.inject_failure == "optimize-step-2" || o.inject_failure == "optimize-step-3";
   if (!o.inject_failure.empty() && !injects_step &&
       std::find(std::begin(kStages), std::end(kStages), o.inject_failure) == std::end(kStages))
     throw core::InputError("inject_failure: no stage named " + o.inject_failure);
@@ -190,44 +250,33 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   // 4. gridding at the scale nearest the target (an integer polycube is never scaled below 1,
   //    so the simplified planes stay distinct and aligned: mesh/grid.h).
   core::HexMesh hex;
-  run.stage("hexmesh", [&] {
-    mesh::GridOptions go;
-    go.target_hexes = o.target_hexes;
-    go.sizing = grid_sizing;
-    mesh::GridResult g = mesh::grid_polycube(map, go);
-    if (!g.snapping.ok())
-      throw core::GeometryError("snapping the polycube to the lattice broke it: " + g.snapping.summary());
-    r.grid_scale = g.scale;
-    r.hexes = static_cast<int>(g.hex_model.cells.size());
-    r.quads = static_cast<int>(g.quad_model.cells.size());
-    const quality::ScaledJacobianSummary sj = quality::scaled_jacobian(g.hex_model);
-    r.inverted_gridded = sj.inverted + sj.invalid;
-    r.msj_gridded = sj.min;
-    r.asj_gridded = sj.average;
-    io::write_mesh(out_dir / "hex.mesh", core::to_mesh_data(g.hex_model));
-    wrote(out_dir / "hex.mesh");
-    quality::ReportOptions qo;
-    qo.structure = true;
-    qo.target = &in.target;
-    const quality::QuadReport qr = quality::quad_report(g.quad_model, qo);
-    write_vtk(out_dir / "quad.vtk", core::to_mesh_data(g.quad_model), qr.fields());
-    wrote(out_dir / "quad.vtk");
-    hex = std::move(g.hex_model);
-  });
+  auto add_file = [&](const fs::path& p) {
+    if (std::find(r.files.begin(), r.files.end(), p.string()) == r.files.end()) wrote(p);
+  };
+  run.stage("hexmesh", [&] { hex = grid_and_write(map, o.target_hexes, grid_sizing, in, out_dir, r, add_file); });
 
-  // 5. optimization (hex mesh untangling and quality improvement)
+  // 5. optimization (hex mesh untangling and quality improvement); when the result fails the
+  //    fold-over check, the map is gridded again (OptimizeFallback) and optimized once more.
   if (o.optimize)
     run.stage("optimize", [&] {
-      const optimize::OptimizeResult opt = optimize::optimize_hex_mesh(hex, in.target, o.optimize_options);
-      r.iterations_optimize = opt.untangle.iterations + opt.quality.iterations;
-      const optimize::FoldoverReport fold = optimize::check_foldover(hex);
-      if (!fold.ok())
-        throw core::GeometryError(fmt::format(
-            "the optimized hex mesh fails the global fold-over check: {} inverted hexes, {} with a non-positive "
-            "scaled Jacobian, {} boundary self-intersections",
-            fold.inverted_hexes, fold.nonpositive_scaled_jacobian, fold.boundary_self_intersections));
+      // Testing only: "optimize-step-N" counts the first N results as failed (RunOptions).
+      const int injected = o.inject_failure.rfind("optimize-step-", 0) == 0 ? std::stoi(o.inject_failure.substr(14)) : 0;
+      int checks = 0;
+      auto why_failed = [&](const optimize::FoldoverReport& fold) {
+        return checks++ < injected ? std::string("injected failure") : fold.ok() ? std::string() : fold_summary(fold);
+      };
+      std::string why = why_failed(optimize_and_check(hex, in, o, r));
+      for (const OptimizeFallback& fb : optimize_fallbacks(o.target_hexes, grid_sizing)) {
+        if (why.empty() || !o.optimize_fallbacks) break;
+        r.optimize_tried.push_back(fmt::format("{}: {}", r.optimize_fallback == "none" ? "first grid" : r.optimize_fallback, why));
+        core::logger().warn("optimize: {}; gridding again: {}", why, fb.name);
+        hex = grid_and_write(map, fb.target_hexes, fb.sizing, in, out_dir, r, add_file);
+        r.optimize_fallback = fb.name;
+        why = why_failed(optimize_and_check(hex, in, o, r));
+      }
+      if (!why.empty()) throw core::GeometryError("the optimized hex mesh fails the global fold-over check: " + why);
       io::write_mesh(out_dir / "hex_optimized.mesh", core::to_mesh_data(hex));
-      wrote(out_dir / "hex_optimized.mesh");
+      add_file(out_dir / "hex_optimized.mesh");
     });
 
   // 6. quality of the final hex mesh

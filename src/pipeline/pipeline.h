@@ -37,13 +37,17 @@ struct RunOptions {
   mesh::GridSizing grid_sizing = mesh::GridSizing::Uniform;  //!< cells per chart interval (mesh/grid.h)
   bool optimize = true;                    //!< optimize the gridded hex mesh
   optimize::OptimizeOptions optimize_options;
+  //! When the optimized mesh fails the fold-over check: grid the map again with its own
+  //! sizing, then twice as fine, and optimize each (hex.mesh and quad.vtk are replaced).
+  bool optimize_fallbacks = true;
   //! Called when a stage starts: (1-based index, number of stages, name).
   std::function<void(int, int, const std::string&)> on_stage;
   //! Fault injection, for tests of the failure handling only (the hidden `--inject-failure`
   //! option of `polycube run`): the stage of this name fails as soon as it starts, with a
   //! core::GeometryError "injected failure", exactly as a stage that could not reach a result;
   //! "simplify-step-N": the first N steps of the simplification count as failed (its
-  //! fallbacks, simplify.h). Empty (the default): never.
+  //! fallbacks, simplify.h); "optimize-step-N": the first N optimized meshes count as failing
+  //! the fold-over check (optimize_fallbacks). Empty (the default): never.
   std::string inject_failure;
 };
 
@@ -85,6 +89,8 @@ struct RunResult {
   double msj_gridded = -2, asj_gridded = -2;
   // optimize / final mesh
   int iterations_optimize = -1;
+  std::string optimize_fallback = "none";   //!< the gridding whose optimized mesh passed ("none": the first)
+  std::vector<std::string> optimize_tried;  //!< why the earlier griddings' results failed
   double msj = -2, asj = -2;           //!< final hex mesh
   int inverted = -1;                   //!< final hex mesh
   int final_domains = -1;              //!< #D of the final hex mesh

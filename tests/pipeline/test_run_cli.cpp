@@ -15,6 +15,7 @@
 #include "cli/surface_file.h"
 #include "support/shapes.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <sys/wait.h>
@@ -411,6 +412,40 @@ TEST(RunCli, SimplifyFallsBackStepByStepAndTheReportNamesTheStep) {
     else
       EXPECT_FALSE(fs::exists(out / "simplify"));
   }
+}
+
+// The optimizer's fallbacks (pipeline.h), reached by `--inject-failure optimize-step-N` (the
+// first N optimized meshes count as failing the fold-over check): the map is gridded again
+// with its own sizing, then twice as fine; the report names the gridding that passed, and
+// hex.mesh is the gridding that was optimized. When all fail, the stage fails with exit 3.
+TEST(RunCli, OptimizeFallsBackToNewGriddingsAndTheReportNamesThem) {
+  const fs::path dir = temp_dir("optimize_fallbacks");
+  write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
+  const char* expected[] = {"map sizing", "finer grid (2x hexes)"};
+  int hexes[2] = {0, 0};
+  for (int n = 1; n <= 2; ++n) {
+    SCOPED_TRACE(n);
+    const fs::path out = dir / ("out" + std::to_string(n));
+    const CliResult r = run(dir / "box.obj", out, "--hexes 200 --inject-failure optimize-step-" + std::to_string(n));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = read_report(out);
+    EXPECT_EQ(j["optimize_fallback"], expected[n - 1]);
+    ASSERT_EQ(j["optimize_tried"].size(), static_cast<std::size_t>(n));
+    EXPECT_EQ(j["optimize_tried"][0], "first grid: injected failure");
+    EXPECT_EQ(j["final"]["inverted"], 0);
+    const std::string regridded = fmt::format("regridded: {}", expected[n - 1]);
+    EXPECT_NE(r.out.find(regridded), std::string::npos) << r.out;
+    // hex.mesh is the gridding that was optimized: same hexes as the final mesh, as reported.
+    const core::HexMesh gridded = core::hexes_of(io::read_mesh(out / "hex.mesh"));
+    const core::HexMesh final_mesh = core::hexes_of(io::read_mesh(out / "hex_optimized.mesh"));
+    EXPECT_EQ(gridded.cells, final_mesh.cells);
+    EXPECT_EQ(static_cast<int>(gridded.cells.size()), j["hexes"].get<int>());
+    hexes[n - 1] = j["hexes"].get<int>();
+  }
+  EXPECT_GT(hexes[1], hexes[0]);  // twice the target: a finer grid
+  const CliResult r = run(dir / "box.obj", dir / "out3", "--hexes 200 --inject-failure optimize-step-3");
+  expect_stopped_at(r, dir / "out3", "optimize", 3, {"input", "construct", "simplify", "hexmesh"});
+  EXPECT_EQ(read_report(dir / "out3")["optimize_tried"].size(), 2u);
 }
 
 // The lattice of 2e9 hexes is beyond the gridding's bound (mesh/grid.h, max_lattice_points):
