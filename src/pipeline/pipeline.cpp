@@ -31,6 +31,13 @@ namespace polycube::pipeline {
 namespace {
 
 
+//! Testing only: N for an injected failure "<prefix>N" with N in 1..3 (RunOptions::inject_failure), else 0.
+int injected_steps(const std::string& inject, const std::string& prefix) {
+  if (inject.size() != prefix.size() + 1 || inject.rfind(prefix, 0) != 0) return 0;
+  const char n = inject.back();
+  return n >= '1' && n <= '3' ? n - '0' : 0;
+}
+
 //! Every stage's name, in order (simplify and optimize can be turned off).
 constexpr const char* kStages[] = {"input", "construct", "simplify", "hexmesh", "optimize", "quality"};
 
@@ -167,9 +174,8 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   const core::Stopwatch clock;
   RunResult r;
   if (o.target_hexes <= 0) throw core::InputError("the target number of hexes must be positive");
-  const bool injects_step = o.inject_failure == "simplify-step-1" || o.inject_failure == "simplify-step-2" ||
-                            o.inject_failure == "simplify-step-3" || o.inject_failure == "optimize-step-1" ||
-                            o.inject_failure == "optimize-step-2" || o.inject_failure == "optimize-step-3";
+  const bool injects_step =
+      injected_steps(o.inject_failure, "simplify-step-") > 0 || injected_steps(o.inject_failure, "optimize-step-") > 0;
   if (!o.inject_failure.empty() && !injects_step &&
       std::find(std::begin(kStages), std::end(kStages), o.inject_failure) == std::end(kStages))
     throw core::InputError("inject_failure: no stage named " + o.inject_failure);
@@ -219,8 +225,7 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
           so.align.auto_resolution = std::clamp(std::round(res), 4.0, so.align.auto_resolution);
         }
       }
-      if (o.inject_failure.rfind("simplify-step-", 0) == 0)
-        so.inject_failed_steps = std::stoi(o.inject_failure.substr(std::string("simplify-step-").size()));
+      so.inject_failed_steps = injected_steps(o.inject_failure, "simplify-step-");
       const simplify::SimplifyResult s = simplify::simplify_map(map, so);
       r.simplify_step = simplify::step_name(s.step);
       r.simplify_tried = s.tried;
@@ -260,7 +265,7 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   if (o.optimize)
     run.stage("optimize", [&] {
       // Testing only: "optimize-step-N" counts the first N results as failed (RunOptions).
-      const int injected = o.inject_failure.rfind("optimize-step-", 0) == 0 ? std::stoi(o.inject_failure.substr(14)) : 0;
+      const int injected = injected_steps(o.inject_failure, "optimize-step-");
       int checks = 0;
       auto why_failed = [&](const optimize::FoldoverReport& fold) {
         return checks++ < injected ? std::string("injected failure") : fold.ok() ? std::string() : fold_summary(fold);
