@@ -4,8 +4,11 @@
 #include "core/errors.h"
 #include "core/log.h"
 #include "core/progress.h"
+#include "core/topology.h"
+#include "io/mesh_io.h"
 #include "mesh/grid.h"
 #include "quality/scaled_jacobian.h"
+#include "quality/surface_distance.h"
 
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <unistd.h>
@@ -65,6 +68,14 @@ CLI::Option* add_sizing_option(CLI::App& sub, mesh::GridSizing& sizing, const st
           std::map<std::string, mesh::GridSizing>{{"uniform", mesh::GridSizing::Uniform}, {"map", mesh::GridSizing::Map}},
           CLI::ignore_case))
       ->capture_default_str();
+}
+
+core::TriMesh read_target_surface(const std::string& path) {
+  const core::MeshData d = io::read_mesh(path);
+  if (!d.triangles.empty() || !d.quads.empty()) return io::read_surface(path);
+  if (!d.hexes.empty()) return quality::triangulate(core::boundary(core::hexes_of(d)).surface);
+  if (!d.tets.empty()) return core::boundary(core::tets_of(d)).surface;
+  throw core::InputError(path + ": no surface or volume elements to use as target");
 }
 
 void add_global_flags(CLI::App& app) {

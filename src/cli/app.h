@@ -4,6 +4,8 @@
 //! output, exit codes (ARCHITECTURE §4: 0 ok, 1 usage, 2 bad input, 3 no valid result,
 //! 4 internal error).
 
+#include "core/types.h"
+
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -52,6 +54,10 @@ nlohmann::json scaled_jacobian_json(const quality::ScaledJacobianSummary& summar
 //! and how long the construction has run (construct::ConstructOptions::on_attempt).
 std::function<void(int, int, const construct::Attempt&, double)> attempt_progress();
 
+//! A target surface as triangles: a surface file's triangles (quads split), or a volume mesh's
+//! boundary. \throw core::InputError when the file has neither
+core::TriMesh read_target_surface(const std::string& path);
+
 //! Add `--sizing uniform|map` (mesh/grid.h) to a subcommand.
 CLI::Option* add_sizing_option(CLI::App& sub, mesh::GridSizing& sizing, const std::string& help);
 
@@ -73,6 +79,7 @@ void register_hexmesh(CLI::App& app);
 void register_quadmesh(CLI::App& app);
 void register_simplify(CLI::App& app);
 void register_optimize(CLI::App& app);
+void register_pad(CLI::App& app);
 void register_run(CLI::App& app);
 
 }  // namespace polycube::cli

@@ -30,15 +30,6 @@ struct OptimizeCliOptions {
   optimize::OptimizeOptions opt;
 };
 
-//! The target as triangles: a surface file's triangles (quads split), or a volume mesh's boundary.
-core::TriMesh read_target(const std::string& path) {
-  const core::MeshData d = io::read_mesh(path);
-  if (!d.triangles.empty() || !d.quads.empty()) return io::read_surface(path);
-  if (!d.hexes.empty()) return quality::triangulate(core::boundary(core::hexes_of(d)).surface);
-  if (!d.tets.empty()) return core::boundary(core::tets_of(d)).surface;
-  throw core::InputError(path + ": no surface or volume elements to use as target");
-}
-
 nlohmann::json phase_json(const optimize::PhaseReport& p) {
   return {{"iterations", p.iterations}, {"newton_steps", p.newton_steps}, {"seconds", p.seconds}};
 }
@@ -49,7 +40,7 @@ void run_optimize(const OptimizeCliOptions& o) {
   const core::MeshData d = io::read_mesh(o.input);
   if (d.hexes.empty()) throw core::InputError(o.input + ": no hexahedra to optimize");
   core::HexMesh mesh = core::hexes_of(d);
-  const core::TriMesh target = read_target(o.target);
+  const core::TriMesh target = read_target_surface(o.target);
   optimize::OptimizeOptions opt = o.opt;
   opt.features = !o.no_features;
 

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   register_quadmesh(app);
   register_simplify(app);
   register_optimize(app);
+  register_pad(app);
   register_run(app);
 
   app.parse_complete_callback(setup_logging_and_progress);

@@ -1,0 +1,161 @@
+//! `polycube pad HEX --target SURFACE -o OUT [--global | --facets F]`: insert a padding layer
+//! along a facet set (thesis ch. 4), optimize it against the target, check it, report the
+//! figures of thesis Table 4.1 before and after.
+#include "cli/app.h"
+#include "core/errors.h"
+#include "io/mesh_io.h"
+#include "padding/padding.h"
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+namespace polycube::cli {
+
+namespace {
+
+struct PadCliOptions {
+  std::string input;
+  std::string target;
+  std::string output;
+  std::string vtk;     //!< optional VTK copy with the padding_layer / source_hex / block fields
+  std::string report;  //!< optional JSON report
+  std::string facets;  //!< facet file; empty: global padding
+  bool global = false;
+  bool no_optimize = false;
+  bool keep_failed = false;
+  padding::PadOptions pad;
+};
+
+//! Facets from a text file: one facet per line as its 4 vertex ids (0-based, the order of the
+//! mesh file's points); blank lines and lines starting with '#' are skipped.
+std::vector<core::Quad> read_facet_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw core::InputError(path + ": cannot open the facet file");
+  std::vector<core::Quad> quads;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    std::istringstream words(line);
+    core::Quad q{};
+    std::string extra;
+    if (!(words >> q[0] >> q[1] >> q[2] >> q[3]) || (words >> extra))
+      throw core::InputError(fmt::format("{}:{}: expected 4 vertex ids, got \"{}\"", path, number, line));
+    quads.push_back(q);
+  }
+  if (quads.empty()) throw core::InputError(path + ": no facet in the facet file");
+  return quads;
+}
+
+nlohmann::json figures_json(const padding::MeshFigures& f) {
+  return {{"hexes", f.hexes},
+          {"singular_vertices", f.singular_vertices},
+          {"singular_edges", f.singular_edges},
+          {"scaled_jacobian", scaled_jacobian_json(f.scaled_jacobian)}};
+}
+
+std::string figures_table(const padding::PadResult& r) {
+  std::string t = fmt::format("  {:<10}{:>10}{:>10}\n", "", "before", "after");
+  t += fmt::format("  {:<10}{:>10}{:>10}\n", "#H", r.before.hexes, r.after.hexes);
+  t += fmt::format("  {:<10}{:>10}{:>10}\n", "#Sv", r.before.singular_vertices, r.after.singular_vertices);
+  t += fmt::format("  {:<10}{:>10}{:>10}\n", "#Se", r.before.singular_edges, r.after.singular_edges);
+  t += fmt::format("  {:<10}{:>10.4f}{:>10.4f}\n", "mSJ", r.before.scaled_jacobian.min, r.after.scaled_jacobian.min);
+  t += fmt::format("  {:<10}{:>10.4f}{:>10.4f}\n", "aSJ", r.before.scaled_jacobian.average,
+                   r.after.scaled_jacobian.average);
+  t += fmt::format("  {:<10}{:>10}{:>10}\n", "inverted", r.before.scaled_jacobian.inverted + r.before.scaled_jacobian.invalid,
+                   r.after.scaled_jacobian.inverted + r.after.scaled_jacobian.invalid);
+  return t;
+}
+
+void run_pad(const PadCliOptions& o) {
+  for (const std::string& out : {o.output, o.vtk})
+    if (!out.empty() && !io::is_volume_format(io::format_from_path(out)))
+      throw core::InputError("expected a volume mesh file (.mesh .vtk .msh), got " + out);
+  const core::MeshData d = io::read_mesh(o.input);
+  if (d.hexes.empty()) throw core::InputError(o.input + ": no hexahedra to pad");
+  const core::HexMesh mesh = core::hexes_of(d);
+  const core::TriMesh target = read_target_surface(o.target);
+  const std::vector<std::uint8_t> selected = o.facets.empty()
+                                                 ? padding::boundary_selection(mesh)
+                                                 : padding::select_facets(mesh, read_facet_file(o.facets));
+  padding::PadOptions opt = o.pad;
+  opt.run_optimizer = !o.no_optimize;
+  const padding::PadResult r = padding::pad_hex_mesh(mesh, target, selected, opt);
+
+  nlohmann::json j;
+  j["input"] = o.input;
+  j["target"] = o.target;
+  j["selection"] = o.facets.empty() ? "global" : o.facets;
+  j["selected_facets"] = r.selected_facets;
+  j["added_hexes"] = r.added_hexes;
+  j["crossing_hexes"] = r.crossing_hexes;
+  j["before"] = figures_json(r.before);
+  j["after"] = figures_json(r.after);
+  j["hausdorff"] = {{"absolute", r.distance.hausdorff}, {"relative", r.distance.relative}};
+  j["check"] = {{"ok", r.check.ok()},
+                {"reason", r.check.reason()},
+                {"inverted_hexes", r.check.inverted_hexes},
+                {"nonpositive_scaled_jacobian", r.check.nonpositive_scaled_jacobian},
+                {"boundary_self_intersections", r.check.boundary_self_intersections}};
+  j["seconds"] = {{"insertion", r.insert_seconds}, {"optimization", r.optimization.seconds}, {"total", r.seconds}};
+
+  std::string text = fmt::format("{}: {} facets padded ({}), {} hexes added\n", o.input, r.selected_facets,
+                                 o.facets.empty() ? "global" : o.facets, r.added_hexes);
+  text += figures_table(r);
+  text += fmt::format("  Hausdorff to the target {:.6g} ({:.4f}% of its bounding-box diagonal)\n", r.distance.hausdorff,
+                      100.0 * r.distance.relative);
+  text += fmt::format("  time: insertion {:.3f} s, optimization {:.2f} s\n", r.insert_seconds, r.optimization.seconds);
+  text += fmt::format("  fold-over check: {}\n", r.check.reason());
+  if (r.check.ok() || o.keep_failed) {
+    // Cell fields go where they can be held (VTK); a .mesh file holds the block labels only.
+    const core::MeshData out = padding::padded_mesh_data(r);
+    io::write_mesh(o.output, io::format_from_path(o.output) == io::Format::Vtk ? out : core::to_mesh_data(r.mesh));
+    j["output"] = o.output;
+    text += fmt::format("wrote {}{}\n", o.output, r.check.ok() ? "" : " (failed the fold-over check: --keep-failed)");
+    if (!o.vtk.empty()) {
+      io::write_mesh(o.vtk, out);
+      j["vtk"] = o.vtk;
+      text += fmt::format("wrote {}\n", o.vtk);
+    }
+  }
+  if (!o.report.empty()) io::write_text_atomic(o.report, j.dump(2) + "\n");
+  print_result(j, text);
+  if (!r.check.ok()) throw core::GeometryError("padded mesh fails the fold-over check: " + r.check.reason());
+}
+
+}  // namespace
+
+void register_pad(CLI::App& app) {
+  auto opts = std::make_shared<PadCliOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "pad", "Insert a layer of hexes under the boundary (global padding) or along given facets, then optimize it "
+             "with the boundary kept on the target; refuses results that fold over");
+  sub->add_option("file", opts->input, "Hex mesh (.mesh .vtk .msh)")->required();
+  sub->add_option("--target", opts->target,
+                  "Target surface (.obj .off .ply .stl .mesh; a volume mesh stands for its boundary)")
+      ->required();
+  sub->add_option("-o,--output", opts->output, "Padded hex mesh (.mesh .vtk .msh)")->required();
+  auto* global = sub->add_flag("--global", opts->global, "Pad every boundary facet (the default)");
+  sub->add_option("--facets", opts->facets,
+                  "Pad these facets instead: a text file, one facet per line as its 4 vertex ids (0-based, in the "
+                  "order of the mesh file's points); interior facets make sheets through the volume. The set must "
+                  "keep an even number of padded facets around interior and concave edges")
+      ->excludes(global);
+  sub->add_option("--offset", opts->pad.sheet.offset,
+                  "Where the new layer starts: this fraction of the local edge length inside the padded facets' hexes")
+      ->check(CLI::Range(0.01, 0.9))
+      ->capture_default_str();
+  sub->add_option("--vtk", opts->vtk, "Also write the padded mesh as VTK with the cell fields padding_layer, "
+                                      "source_hex and block (for ParaView)");
+  sub->add_option("--report", opts->report, "Also write the report as JSON to this file");
+  sub->add_flag("--no-optimize", opts->no_optimize, "Insert the layer only, without optimizing it");
+  sub->add_flag("--keep-failed", opts->keep_failed,
+                "Write the result even when it fails the fold-over check (the exit code is still 3)");
+  sub->callback([opts] { run_pad(*opts); });
+}
+
+}  // namespace polycube::cli

@@ -1,0 +1,64 @@
+#include "padding/padding.h"
+
+#include "core/stopwatch.h"
+#include "quality/singularities.h"
+
+namespace polycube::padding {
+
+const char* mode_name(PaddingMode mode) {
+  switch (mode) {
+    case PaddingMode::None: return "none";
+    case PaddingMode::Global: return "global";
+  }
+  return "?";
+}
+
+MeshFigures mesh_figures(const core::HexMesh& mesh) {
+  MeshFigures f;
+  f.hexes = mesh.num_cells();
+  const quality::HexSingularities s = quality::hex_singularities(mesh);
+  f.singular_vertices = s.singular_vertices;
+  f.singular_edges = s.singular_edges;
+  f.scaled_jacobian = quality::scaled_jacobian(mesh, {.keep_values = false});
+  return f;
+}
+
+PadResult pad_hex_mesh(const core::HexMesh& mesh, const core::TriMesh& target, const std::vector<std::uint8_t>& selected,
+                       const PadOptions& options) {
+  const core::Stopwatch clock;
+  PadResult r;
+  r.before = mesh_figures(mesh);
+  SheetResult sheet = insert_sheet(mesh, selected, options.sheet);
+  r.mesh = std::move(sheet.mesh);
+  r.padding_layer = std::move(sheet.padding_layer);
+  r.source_hex = std::move(sheet.source_hex);
+  r.added_hexes = sheet.added_hexes;
+  r.crossing_hexes = sheet.crossing_hexes;
+  r.selected_facets = sheet.facet_hexes;
+  r.insert_seconds = sheet.seconds;
+  if (options.run_optimizer) r.optimization = optimize::optimize_hex_mesh(r.mesh, target, options.optimize);
+  r.check = optimize::check_foldover(r.mesh);
+  r.distance = quality::hausdorff_distance(r.mesh, target);
+  r.after = mesh_figures(r.mesh);
+  r.seconds = clock.seconds();
+  return r;
+}
+
+core::MeshData padded_mesh_data(const PadResult& result) {
+  core::MeshData d = core::to_mesh_data(result.mesh);
+  core::Field layer{"padding_layer", {}}, source{"source_hex", {}};
+  for (std::size_t h = 0; h < result.mesh.cells.size(); ++h) {
+    layer.values.push_back(result.padding_layer[h]);
+    source.values.push_back(result.source_hex[h]);
+  }
+  d.cell_data.push_back(std::move(layer));
+  d.cell_data.push_back(std::move(source));
+  if (!result.mesh.labels.empty()) {
+    core::Field block{"block", {}};
+    for (int l : result.mesh.labels) block.values.push_back(l);
+    d.cell_data.push_back(std::move(block));
+  }
+  return d;
+}
+
+}  // namespace polycube::padding

@@ -1,0 +1,77 @@
+#pragma once
+//! \file padding.h
+//! \brief Padding as a stage (thesis ch. 4; ARCHITECTURE §6.6): a facet set is inflated into a
+//! new layer of hexes (sheet.h), then the optimizer of optimize/ untangles the layer with the
+//! boundary kept on the target surface and its features, and the global fold-over check runs.
+//! Global padding selects every boundary facet; selective padding (a later issue) chooses the
+//! facets where the polycube map distorts the shape.
+
+#include "core/types.h"
+#include "optimize/foldover_check.h"
+#include "optimize/hex_optimize.h"
+#include "padding/sheet.h"
+#include "quality/scaled_jacobian.h"
+#include "quality/surface_distance.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace polycube::padding {
+
+//! Which facets are padded.
+enum class PaddingMode {
+  None,    //!< no padding
+  Global,  //!< every boundary facet
+};
+
+//! "none" or "global".
+const char* mode_name(PaddingMode mode);
+
+//! Options of pad_hex_mesh().
+struct PadOptions {
+  SheetOptions sheet;                  //!< where the new layer's vertices start
+  optimize::OptimizeOptions optimize;  //!< the optimization after insertion
+  bool run_optimizer = true;           //!< false: insertion only (the layer as placed)
+};
+
+//! The figures of thesis Table 4.1 for one mesh.
+struct MeshFigures {
+  int hexes = 0;              //!< #H
+  int singular_vertices = 0;  //!< #Sv
+  int singular_edges = 0;     //!< #Se
+  quality::ScaledJacobianSummary scaled_jacobian;  //!< mSJ, aSJ (no per-hex values)
+};
+
+//! The figures of a hex mesh. \throw as quality::hex_singularities
+MeshFigures mesh_figures(const core::HexMesh& mesh);
+
+//! Result of pad_hex_mesh().
+struct PadResult {
+  core::HexMesh mesh;                       //!< the padded (and optimized) mesh
+  std::vector<std::uint8_t> padding_layer;  //!< #H': 1 for the new layer's hexes
+  std::vector<int> source_hex;              //!< #H': the input hex each hex comes from
+  MeshFigures before;                       //!< the input
+  MeshFigures after;                        //!< the result
+  int added_hexes = 0;                      //!< hexes of the new layer
+  int crossing_hexes = 0;                   //!< of which at edges where two sheets cross
+  int selected_facets = 0;                  //!< |PF|
+  double insert_seconds = 0;                //!< the insertion
+  optimize::OptimizeResult optimization;    //!< when PadOptions::run_optimizer
+  optimize::FoldoverReport check;           //!< the global fold-over check of the result
+  quality::SurfaceDistance distance;        //!< the result's boundary to the target
+  double seconds = 0;                       //!< wall time, everything included
+};
+
+//! Pad a hex mesh along the selected facets (core::unique_faces order; sheet.h), optimize it
+//! against the target, check it. The result is returned even when the check fails (the caller
+//! decides; PadResult::check says why).
+//! \throw as insert_sheet and optimize::optimize_hex_mesh
+PadResult pad_hex_mesh(const core::HexMesh& mesh, const core::TriMesh& target, const std::vector<std::uint8_t>& selected,
+                       const PadOptions& options = {});
+
+//! The padded mesh as mesh data with the cell fields `padding_layer`, `source_hex` and, when the
+//! input had labels, `block` (the label of the hex each hex comes from), for ParaView.
+core::MeshData padded_mesh_data(const PadResult& result);
+
+}  // namespace polycube::padding
