@@ -18,6 +18,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 
 namespace polycube::cli {
@@ -56,6 +57,14 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
       {"frozen_corners", r.frozen_corners},
       {"optimize_fallback", r.optimize_fallback},
       {"optimize_tried", r.optimize_tried},
+      {"padding", {{"applied", r.padding},
+                   {"added_hexes", r.padding_added},
+                   {"singular_vertices_before", r.singular_vertices_before},
+                   {"singular_edges_before", r.singular_edges_before},
+                   {"singular_vertices_after", r.singular_vertices_after},
+                   {"singular_edges_after", r.singular_edges_after},
+                   {"insert_seconds", r.padding_insert_seconds},
+                   {"optimize_seconds", r.padding_optimize_seconds}}},
       {"hex_domains_before", r.hex_domains_before},
       {"hex_domains_after", r.hex_domains_after},
       {"quad_domains_before", r.quad_domains_before},
@@ -71,6 +80,12 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
       {"files", r.files}};
   if (!r.ok()) j["failure"] = {{"stage", r.failed_stage}, {"reason", r.failure}};
   return j;
+}
+
+std::string padding_summary(const pipeline::RunResult& r) {
+  return fmt::format("{} hexes added, #Sv {} -> {}, #Se {} -> {}", count(r.padding_added),
+                     count(r.singular_vertices_before), count(r.singular_vertices_after),
+                     count(r.singular_edges_before), count(r.singular_edges_after));
 }
 
 std::string summary_table(const pipeline::RunResult& r) {
@@ -91,7 +106,11 @@ std::string summary_table(const pipeline::RunResult& r) {
                          r.quads, figure(r.msj_gridded), figure(r.asj_gridded), count(r.inverted_gridded));
     else if (s.name == "optimize")
       what = fmt::format("{} iterations{}", count(r.iterations_optimize),
-                         r.optimize_fallback == "none" ? std::string() : ", regridded: " + r.optimize_fallback);
+                         r.optimize_fallback == "none"             ? std::string()
+                         : r.optimize_fallback == "global padding" ? ", fell back to global padding: " + padding_summary(r)
+                                                                   : ", regridded: " + r.optimize_fallback);
+    else if (s.name == "pad")
+      what = padding_summary(r);
     else if (s.name == "quality")
       what = fmt::format("mSJ {} aSJ {}, {} inverted, #D {}, Hausdorff {} of the bbox diagonal", figure(r.msj),
                          figure(r.asj), count(r.inverted), count(r.final_domains),
@@ -152,6 +171,14 @@ void register_run(CLI::App& app) {
                   "map's stretch, for hexes of more even size in model space)");
   sub->add_flag("--no-simplify", opts->no_simplify, "Mesh the constructed map without corner alignment");
   sub->add_flag("--no-optimize", opts->no_optimize, "Keep the gridded hex mesh as it is");
+  sub->add_option("--padding", opts->run.padding,
+                  "After optimizing: 'none', or 'global' (a layer of hexes under the whole boundary, optimized "
+                  "again; writes hex_padded.mesh and hex_padded.vtk)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, padding::PaddingMode>{{"none", padding::PaddingMode::None},
+                                                      {"global", padding::PaddingMode::Global}},
+          CLI::ignore_case))
+      ->default_str("none");
   auto& c = opts->run.construct;
   sub->add_option("--compactness", c.labeling.compactness,
                   "Compactness vs fidelity trade-off of the labeling (larger: fewer, smoother charts)")
@@ -176,7 +203,7 @@ void register_run(CLI::App& app) {
   sub->add_option("--inject-failure", opts->run.inject_failure, "Testing only: make this stage fail at its start")
       ->check(CLI::IsMember({"input", "construct", "simplify", "hexmesh", "optimize", "quality", "simplify-step-1",
                              "simplify-step-2", "simplify-step-3", "optimize-step-1", "optimize-step-2",
-                             "optimize-step-3"}))
+                             "optimize-step-3", "optimize-step-4", "pad"}))
       ->group("");
   sub->callback([opts] { run_run(*opts); });
 }

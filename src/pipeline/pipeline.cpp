@@ -31,15 +31,15 @@ namespace polycube::pipeline {
 namespace {
 
 
-//! Testing only: N for an injected failure "<prefix>N" with N in 1..3 (RunOptions::inject_failure), else 0.
+//! Testing only: N for an injected failure "<prefix>N" with N in 1..4 (RunOptions::inject_failure), else 0.
 int injected_steps(const std::string& inject, const std::string& prefix) {
   if (inject.size() != prefix.size() + 1 || inject.rfind(prefix, 0) != 0) return 0;
   const char n = inject.back();
-  return n >= '1' && n <= '3' ? n - '0' : 0;
+  return n >= '1' && n <= '4' ? n - '0' : 0;
 }
 
 //! Every stage's name, in order (simplify and optimize can be turned off).
-constexpr const char* kStages[] = {"input", "construct", "simplify", "hexmesh", "optimize", "quality"};
+constexpr const char* kStages[] = {"input", "construct", "simplify", "hexmesh", "optimize", "pad", "quality"};
 
 //! Signed volume of the map's polycube (lattice units cubed when it is integer).
 double polycube_volume(const core::PolycubeMap& map) {
@@ -143,6 +143,42 @@ optimize::FoldoverReport optimize_and_check(core::HexMesh& hex, const ConstructI
   return optimize::check_foldover(hex);
 }
 
+//! Pad the mesh globally, optimize and check it (padding/padding.h); record the figures and
+//! write hex_padded.mesh and hex_padded.vtk when the result passes the check. A facet set the
+//! insertion refuses comes back as an error, like a failed check.
+padding::PadResult pad_and_record(const core::HexMesh& hex, const ConstructInput& in, const RunOptions& o,
+                                  const std::string& how, const std::filesystem::path& out_dir, RunResult& r,
+                                  const std::function<void(const std::filesystem::path&)>& wrote) {
+  padding::PadResult p =
+      padding::pad_hex_mesh(hex, in.target, padding::boundary_selection(hex), o.padding_options);
+  r.padding = how;
+  r.padding_added = p.added_hexes;
+  r.singular_vertices_before = p.before.singular_vertices;
+  r.singular_edges_before = p.before.singular_edges;
+  r.singular_vertices_after = p.after.singular_vertices;
+  r.singular_edges_after = p.after.singular_edges;
+  r.padding_insert_seconds = p.insert_seconds;
+  r.padding_optimize_seconds = p.optimization.seconds;
+  r.iterations_optimize = p.optimization.untangle.iterations + p.optimization.quality.iterations;
+  if (p.check.ok()) {
+    io::write_mesh(out_dir / "hex_padded.mesh", core::to_mesh_data(p.mesh));
+    wrote(out_dir / "hex_padded.mesh");
+    io::write_mesh(out_dir / "hex_padded.vtk", padding::padded_mesh_data(p));
+    wrote(out_dir / "hex_padded.vtk");
+  }
+  return p;
+}
+
+//! Forget a padded mesh that is not kept (only an injected failure can reject a mesh that
+//! passed the check, the only one pad_and_record writes).
+void discard_padded(const std::filesystem::path& out_dir, RunResult& r) {
+  for (const char* name : {"hex_padded.mesh", "hex_padded.vtk"}) {
+    std::error_code ec;
+    std::filesystem::remove(out_dir / name, ec);
+    std::erase(r.files, (out_dir / name).string());
+  }
+}
+
 //! A second gridding for the optimizer when the first one's result fails the fold-over check.
 struct OptimizeFallback {
   std::string name;
@@ -183,7 +219,8 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   fs::create_directories(out_dir, ec);
   if (ec) throw core::InputError(fmt::format("cannot create the output folder {}: {}", out_dir.string(), ec.message()));
 
-  const int count = 4 + (o.simplify ? 1 : 0) + (o.optimize ? 1 : 0);
+  const int count =
+      4 + (o.simplify ? 1 : 0) + (o.optimize ? 1 : 0) + (o.padding != padding::PaddingMode::None ? 1 : 0);
   Runner run(r, o, count);
   auto wrote = [&](const fs::path& p) { r.files.push_back(p.string()); };
 
@@ -271,12 +308,32 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
         return checks++ < injected ? std::string("injected failure") : fold.ok() ? std::string() : fold_summary(fold);
       };
       std::string why = why_failed(optimize_and_check(hex, in, o, r));
+      auto record_failure = [&] {
+        r.optimize_tried.push_back(
+            fmt::format("{}: {}", r.optimize_fallback == "none" ? "first grid" : r.optimize_fallback, why));
+      };
+      // Padding first: the new layer frees the boundary hexes the gridding squashed, and costs
+      // one optimization instead of a new gridding's (thesis ch. 4).
+      if (!why.empty() && o.optimize_fallbacks) {
+        record_failure();
+        core::logger().warn("optimize: {}; padding the mesh globally", why);
+        r.optimize_fallback = "global padding";
+        try {
+          padding::PadResult p = pad_and_record(hex, in, o, "global (optimize fallback)", out_dir, r, add_file);
+          why = why_failed(p.check);
+          if (why.empty()) hex = std::move(p.mesh);
+          else discard_padded(out_dir, r);
+        } catch (const core::Error& e) {
+          why = e.what();
+        }
+      }
       for (const OptimizeFallback& fb : optimize_fallbacks(o.target_hexes, grid_sizing)) {
         if (why.empty() || !o.optimize_fallbacks) break;
-        r.optimize_tried.push_back(fmt::format("{}: {}", r.optimize_fallback == "none" ? "first grid" : r.optimize_fallback, why));
+        record_failure();
         core::logger().warn("optimize: {}; gridding again: {}", why, fb.name);
         hex = grid_and_write(map, fb.target_hexes, fb.sizing, in, out_dir, r, add_file);
         r.optimize_fallback = fb.name;
+        r.padding = "none";
         why = why_failed(optimize_and_check(hex, in, o, r));
       }
       if (!why.empty()) throw core::GeometryError("the optimized hex mesh fails the global fold-over check: " + why);
@@ -284,7 +341,16 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
       add_file(out_dir / "hex_optimized.mesh");
     });
 
-  // 6. quality of the final hex mesh
+  // 6. padding on request (unless the optimize stage has padded already)
+  if (o.padding != padding::PaddingMode::None && r.ok() && r.padding == "none")
+    run.stage("pad", [&] {
+      padding::PadResult p = pad_and_record(hex, in, o, padding::mode_name(o.padding), out_dir, r, add_file);
+      if (!p.check.ok())
+        throw core::GeometryError("the padded hex mesh fails the global fold-over check: " + fold_summary(p.check));
+      hex = std::move(p.mesh);
+    });
+
+  // 7. quality of the final hex mesh
   run.stage("quality", [&] {
     quality::ReportOptions qo;
     qo.target = &in.target;

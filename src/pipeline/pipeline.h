@@ -9,7 +9,12 @@
 //!   construct/model.mesh, construct/polycube.mesh   the certified map (construct convention)
 //!   simplify/model.mesh, simplify/polycube.mesh     the simplified map (unless disabled)
 //!   hex.mesh                                        the gridded hex mesh (model space)
-//!   hex_optimized.mesh                              after optimization (unless disabled)
+//!   hex_optimized.mesh                              after optimization (unless disabled); when
+//!                                                   the optimize stage fell back to padding, the
+//!                                                   padded mesh
+//!   hex_padded.mesh, hex_padded.vtk                 the padded mesh (padding requested, or the
+//!                                                   optimize stage's fallback); the VTK has the
+//!                                                   cell fields padding_layer and source_hex
 //!   hex_quality.vtk                                 the final hex mesh, cell data
 //!                                                   scaled_jacobian and block_id (ParaView)
 //!   quad.vtk                                        the surface quad mesh, cell data
@@ -19,6 +24,7 @@
 #include "construct/construct.h"
 #include "mesh/grid.h"
 #include "optimize/hex_optimize.h"
+#include "padding/padding.h"
 #include "simplify/simplify.h"
 
 #include <filesystem>
@@ -37,17 +43,21 @@ struct RunOptions {
   mesh::GridSizing grid_sizing = mesh::GridSizing::Uniform;  //!< cells per chart interval (mesh/grid.h)
   bool optimize = true;                    //!< optimize the gridded hex mesh
   optimize::OptimizeOptions optimize_options;
-  //! When the optimized mesh fails the fold-over check: grid the map again with its own
-  //! sizing, then twice as fine, and optimize each (hex.mesh and quad.vtk are replaced).
+  //! When the optimized mesh fails the fold-over check: pad it globally and optimize again;
+  //! then grid the map again with its own sizing, then twice as fine, and optimize each
+  //! (hex.mesh and quad.vtk are replaced).
   bool optimize_fallbacks = true;
+  //! Padding after the optimization (stage "pad"): none, or a layer under the whole boundary.
+  padding::PaddingMode padding = padding::PaddingMode::None;
+  padding::PadOptions padding_options;
   //! Called when a stage starts: (1-based index, number of stages, name).
   std::function<void(int, int, const std::string&)> on_stage;
   //! Fault injection, for tests of the failure handling only (the hidden `--inject-failure`
   //! option of `polycube run`): the stage of this name fails as soon as it starts, with a
   //! core::GeometryError "injected failure", exactly as a stage that could not reach a result;
   //! "simplify-step-N": the first N steps of the simplification count as failed (its
-  //! fallbacks, simplify.h); "optimize-step-N": the first N optimized meshes count as failing
-  //! the fold-over check (optimize_fallbacks). Empty (the default): never.
+  //! fallbacks, simplify.h); "optimize-step-N" (N in 1..4): the first N optimized meshes count
+  //! as failing the fold-over check (optimize_fallbacks). Empty (the default): never.
   std::string inject_failure;
 };
 
@@ -91,6 +101,12 @@ struct RunResult {
   int iterations_optimize = -1;
   std::string optimize_fallback = "none";   //!< the gridding whose optimized mesh passed ("none": the first)
   std::vector<std::string> optimize_tried;  //!< why the earlier griddings' results failed
+  // padding (requested, or the optimize stage's fallback)
+  std::string padding = "none";        //!< "none", "global", or "global (optimize fallback)"
+  int padding_added = -1;              //!< hexes of the new layer
+  int singular_vertices_before = -1, singular_edges_before = -1;  //!< #Sv, #Se before padding
+  int singular_vertices_after = -1, singular_edges_after = -1;    //!< ... after
+  double padding_insert_seconds = -1, padding_optimize_seconds = -1;
   double msj = -2, asj = -2;           //!< final hex mesh
   int inverted = -1;                   //!< final hex mesh
   int final_domains = -1;              //!< #D of the final hex mesh

@@ -415,15 +415,16 @@ TEST(RunCli, SimplifyFallsBackStepByStepAndTheReportNamesTheStep) {
 }
 
 // The optimizer's fallbacks (pipeline.h), reached by `--inject-failure optimize-step-N` (the
-// first N optimized meshes count as failing the fold-over check): the map is gridded again
-// with its own sizing, then twice as fine; the report names the gridding that passed, and
-// hex.mesh is the gridding that was optimized. When all fail, the stage fails with exit 3.
-TEST(RunCli, OptimizeFallsBackToNewGriddingsAndTheReportNamesThem) {
+// first N optimized meshes count as failing the fold-over check): the mesh is padded globally,
+// then the map is gridded again with its own sizing, then twice as fine; the report names the
+// fallback that passed, and hex.mesh is the gridding that was optimized. When all fail, the
+// stage fails with exit 3.
+TEST(RunCli, OptimizeFallsBackToPaddingThenNewGriddingsAndTheReportNamesThem) {
   const fs::path dir = temp_dir("optimize_fallbacks");
   write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
-  const char* expected[] = {"map sizing", "finer grid (2x hexes)"};
-  int hexes[2] = {0, 0};
-  for (int n = 1; n <= 2; ++n) {
+  const char* expected[] = {"global padding", "map sizing", "finer grid (2x hexes)"};
+  int hexes[3] = {0, 0, 0};
+  for (int n = 1; n <= 3; ++n) {
     SCOPED_TRACE(n);
     const fs::path out = dir / ("out" + std::to_string(n));
     const CliResult r = run(dir / "box.obj", out, "--hexes 200 --inject-failure optimize-step-" + std::to_string(n));
@@ -433,19 +434,54 @@ TEST(RunCli, OptimizeFallsBackToNewGriddingsAndTheReportNamesThem) {
     ASSERT_EQ(j["optimize_tried"].size(), static_cast<std::size_t>(n));
     EXPECT_EQ(j["optimize_tried"][0], "first grid: injected failure");
     EXPECT_EQ(j["final"]["inverted"], 0);
-    const std::string regridded = fmt::format("regridded: {}", expected[n - 1]);
-    EXPECT_NE(r.out.find(regridded), std::string::npos) << r.out;
-    // hex.mesh is the gridding that was optimized: same hexes as the final mesh, as reported.
     const core::HexMesh gridded = core::hexes_of(io::read_mesh(out / "hex.mesh"));
     const core::HexMesh final_mesh = core::hexes_of(io::read_mesh(out / "hex_optimized.mesh"));
-    EXPECT_EQ(gridded.cells, final_mesh.cells);
     EXPECT_EQ(static_cast<int>(gridded.cells.size()), j["hexes"].get<int>());
     hexes[n - 1] = j["hexes"].get<int>();
+    if (n == 1) {
+      // The padded mesh: the gridded hexes and one more per boundary quad, the layer flagged.
+      EXPECT_NE(r.out.find("fell back to global padding"), std::string::npos) << r.out;
+      EXPECT_EQ(j["padding"]["applied"], "global (optimize fallback)");
+      EXPECT_EQ(j["padding"]["added_hexes"].get<int>(), j["quads"].get<int>());
+      EXPECT_EQ(final_mesh.num_cells(), gridded.num_cells() + j["quads"].get<int>());
+      EXPECT_EQ(core::hexes_of(io::read_mesh(out / "hex_padded.mesh")).cells, final_mesh.cells);
+      EXPECT_TRUE(fs::exists(out / "hex_padded.vtk"));
+      continue;
+    }
+    // hex.mesh is the gridding that was optimized: same hexes as the final mesh, as reported;
+    // the padded mesh that was tried is not left behind.
+    EXPECT_NE(r.out.find(fmt::format("regridded: {}", expected[n - 1])), std::string::npos) << r.out;
+    EXPECT_EQ(gridded.cells, final_mesh.cells);
+    EXPECT_EQ(j["padding"]["applied"], "none");
+    EXPECT_FALSE(fs::exists(out / "hex_padded.mesh"));
   }
-  EXPECT_GT(hexes[1], hexes[0]);  // twice the target: a finer grid
-  const CliResult r = run(dir / "box.obj", dir / "out3", "--hexes 200 --inject-failure optimize-step-3");
-  expect_stopped_at(r, dir / "out3", "optimize", 3, {"input", "construct", "simplify", "hexmesh"});
-  EXPECT_EQ(read_report(dir / "out3")["optimize_tried"].size(), 2u);
+  EXPECT_GT(hexes[2], hexes[1]);  // twice the target: a finer grid
+  const CliResult r = run(dir / "box.obj", dir / "out4", "--hexes 200 --inject-failure optimize-step-4");
+  expect_stopped_at(r, dir / "out4", "optimize", 3, {"input", "construct", "simplify", "hexmesh"});
+  EXPECT_EQ(read_report(dir / "out4")["optimize_tried"].size(), 3u);
+}
+
+TEST(RunCli, GlobalPaddingOnRequestAddsThePadStage) {
+  const fs::path dir = temp_dir("padding_global");
+  write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
+  const CliResult r = run(dir / "box.obj", dir / "out", "--hexes 200 --padding global");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = read_report(dir / "out");
+  EXPECT_EQ(j["padding"]["applied"], "global");
+  EXPECT_EQ(j["optimize_fallback"], "none");
+  const core::HexMesh optimized = core::hexes_of(io::read_mesh(dir / "out" / "hex_optimized.mesh"));
+  const core::HexMesh padded = core::hexes_of(io::read_mesh(dir / "out" / "hex_padded.mesh"));
+  EXPECT_EQ(optimized.num_cells(), j["hexes"].get<int>());
+  EXPECT_EQ(padded.num_cells(), optimized.num_cells() + j["quads"].get<int>());
+  EXPECT_EQ(j["padding"]["added_hexes"].get<int>(), j["quads"].get<int>());
+  EXPECT_GT(j["padding"]["singular_vertices_after"].get<int>(), j["padding"]["singular_vertices_before"].get<int>());
+  EXPECT_EQ(j["final"]["inverted"], 0);
+  EXPECT_LT(j["final"]["hausdorff_relative"].get<double>(), 0.009);
+  // The final quality file is the padded mesh's.
+  EXPECT_EQ(static_cast<int>(io::read_mesh(dir / "out" / "hex_quality.vtk").hexes.size()), padded.num_cells());
+  bool pad_stage = false;
+  for (const auto& s : j["stages"]) pad_stage = pad_stage || (s["stage"] == "pad" && s["ok"].get<bool>());
+  EXPECT_TRUE(pad_stage);
 }
 
 // The lattice of 2e9 hexes is beyond the gridding's bound (mesh/grid.h, max_lattice_points):
