@@ -7,6 +7,7 @@
 #include "core/topology.h"
 #include "io/mesh_io.h"
 #include "mesh/grid.h"
+#include "optimize/foldover_check.h"
 #include "quality/scaled_jacobian.h"
 #include "quality/surface_distance.h"
 
@@ -68,6 +69,23 @@ CLI::Option* add_sizing_option(CLI::App& sub, mesh::GridSizing& sizing, const st
           std::map<std::string, mesh::GridSizing>{{"uniform", mesh::GridSizing::Uniform}, {"map", mesh::GridSizing::Map}},
           CLI::ignore_case))
       ->capture_default_str();
+}
+
+CLI::Option* add_target_option(CLI::App& sub, std::string& target) {
+  return sub.add_option("--target", target,
+                        "Target surface (.obj .off .ply .stl .mesh; a volume mesh stands for its boundary)")
+      ->required();
+}
+
+nlohmann::json foldover_json(const optimize::FoldoverReport& check) {
+  nlohmann::json j = {{"ok", check.ok()},
+                      {"reason", check.reason()},
+                      {"inverted_hexes", check.inverted_hexes},
+                      {"nonpositive_scaled_jacobian", check.nonpositive_scaled_jacobian},
+                      {"boundary_self_intersections", check.boundary_self_intersections},
+                      {"crossings", nlohmann::json::array()}};
+  for (const core::Vec3& c : check.crossings) j["crossings"].push_back({c.x(), c.y(), c.z()});
+  return j;
 }
 
 core::TriMesh read_target_surface(const std::string& path) {

@@ -22,6 +22,9 @@ struct ScaledJacobianSummary;
 namespace polycube::construct {
 struct Attempt;
 }
+namespace polycube::optimize {
+struct FoldoverReport;
+}
 
 namespace polycube::cli {
 
@@ -57,6 +60,13 @@ std::function<void(int, int, const construct::Attempt&, double)> attempt_progres
 //! A target surface as triangles: a surface file's triangles (quads split), or a volume mesh's
 //! boundary. \throw core::InputError when the file has neither
 core::TriMesh read_target_surface(const std::string& path);
+
+//! Add the required `--target SURFACE` of the commands that keep a mesh's boundary on a surface.
+CLI::Option* add_target_option(CLI::App& sub, std::string& target);
+
+//! The global fold-over check as JSON: `{"ok", "reason", "inverted_hexes",
+//! "nonpositive_scaled_jacobian", "boundary_self_intersections", "crossings": [[x, y, z], ...]}`.
+nlohmann::json foldover_json(const optimize::FoldoverReport& check);
 
 //! Add `--sizing uniform|map` (mesh/grid.h) to a subcommand.
 CLI::Option* add_sizing_option(CLI::App& sub, mesh::GridSizing& sizing, const std::string& help);

@@ -67,13 +67,8 @@ void run_optimize(const OptimizeCliOptions& o) {
   j["quality"]["drift_retries_kept"] = r.drift_retries;
   j["quality"]["fit_retry_kept"] = r.fit_retry;
   j["setup_seconds"] = r.setup.seconds;
-  j["check"] = {{"ok", check.ok()},
-                {"reason", check.reason()},
-                {"inverted_hexes", check.inverted_hexes},
-                {"nonpositive_scaled_jacobian", check.nonpositive_scaled_jacobian},
-                {"boundary_self_intersections", check.boundary_self_intersections},
-                {"seconds", check_seconds}};
-  for (const core::Vec3& c : check.crossings) j["check"]["crossings"].push_back({c.x(), c.y(), c.z()});
+  j["check"] = foldover_json(check);
+  j["check"]["seconds"] = check_seconds;
   j["seconds"] = r.seconds + check_seconds;
   std::string text = fmt::format("{}: {} hexes, target {}\n", o.input, mesh.num_cells(), o.target);
   text += fmt::format("  {:<10}{:>10}{:>10}\n", "", "before", "after");
@@ -110,9 +105,7 @@ void register_optimize(CLI::App& app) {
       "optimize", "Untangle a hex mesh and raise its minimum scaled Jacobian, boundary kept on a target surface "
                   "and its sharp features; refuses results that fold over");
   sub->add_option("file", opts->input, "Hex mesh (.mesh .vtk .msh)")->required();
-  sub->add_option("--target", opts->target,
-                  "Target surface (.obj .off .ply .stl .mesh; a volume mesh stands for its boundary)")
-      ->required();
+  add_target_option(*sub, opts->target);
   sub->add_option("-o,--output", opts->output, "Optimized hex mesh (.mesh .vtk .msh)")->required();
   sub->add_option("--report", opts->report, "Also write the report as JSON to this file");
   auto& oo = opts->opt;

@@ -55,6 +55,7 @@ nlohmann::json figures_json(const padding::MeshFigures& f) {
   return {{"hexes", f.hexes},
           {"singular_vertices", f.singular_vertices},
           {"singular_edges", f.singular_edges},
+          {"multi_boundary_hexes", f.multi_boundary_hexes},
           {"scaled_jacobian", scaled_jacobian_json(f.scaled_jacobian)}};
 }
 
@@ -63,6 +64,8 @@ std::string figures_table(const padding::PadResult& r) {
   t += fmt::format("  {:<10}{:>10}{:>10}\n", "#H", r.before.hexes, r.after.hexes);
   t += fmt::format("  {:<10}{:>10}{:>10}\n", "#Sv", r.before.singular_vertices, r.after.singular_vertices);
   t += fmt::format("  {:<10}{:>10}{:>10}\n", "#Se", r.before.singular_edges, r.after.singular_edges);
+  t += fmt::format("  {:<10}{:>10}{:>10}  (hexes with 2+ boundary faces)\n", "#H2+", r.before.multi_boundary_hexes,
+                   r.after.multi_boundary_hexes);
   t += fmt::format("  {:<10}{:>10.4f}{:>10.4f}\n", "mSJ", r.before.scaled_jacobian.min, r.after.scaled_jacobian.min);
   t += fmt::format("  {:<10}{:>10.4f}{:>10.4f}\n", "aSJ", r.before.scaled_jacobian.average,
                    r.after.scaled_jacobian.average);
@@ -96,11 +99,7 @@ void run_pad(const PadCliOptions& o) {
   j["before"] = figures_json(r.before);
   j["after"] = figures_json(r.after);
   j["hausdorff"] = {{"absolute", r.distance.hausdorff}, {"relative", r.distance.relative}};
-  j["check"] = {{"ok", r.check.ok()},
-                {"reason", r.check.reason()},
-                {"inverted_hexes", r.check.inverted_hexes},
-                {"nonpositive_scaled_jacobian", r.check.nonpositive_scaled_jacobian},
-                {"boundary_self_intersections", r.check.boundary_self_intersections}};
+  j["check"] = foldover_json(r.check);
   j["seconds"] = {{"insertion", r.insert_seconds}, {"optimization", r.optimization.seconds}, {"total", r.seconds}};
 
   std::string text = fmt::format("{}: {} facets padded ({}), {} hexes added\n", o.input, r.selected_facets,
@@ -135,9 +134,7 @@ void register_pad(CLI::App& app) {
       "pad", "Insert a layer of hexes under the boundary (global padding) or along given facets, then optimize it "
              "with the boundary kept on the target; refuses results that fold over");
   sub->add_option("file", opts->input, "Hex mesh (.mesh .vtk .msh)")->required();
-  sub->add_option("--target", opts->target,
-                  "Target surface (.obj .off .ply .stl .mesh; a volume mesh stands for its boundary)")
-      ->required();
+  add_target_option(*sub, opts->target);
   sub->add_option("-o,--output", opts->output, "Padded hex mesh (.mesh .vtk .msh)")->required();
   auto* global = sub->add_flag("--global", opts->global, "Pad every boundary facet (the default)");
   sub->add_option("--facets", opts->facets,

@@ -1,7 +1,10 @@
 #include "padding/padding.h"
 
 #include "core/stopwatch.h"
+#include "core/topology.h"
 #include "quality/singularities.h"
+
+#include <algorithm>
 
 namespace polycube::padding {
 
@@ -20,6 +23,9 @@ MeshFigures mesh_figures(const core::HexMesh& mesh) {
   f.singular_vertices = s.singular_vertices;
   f.singular_edges = s.singular_edges;
   f.scaled_jacobian = quality::scaled_jacobian(mesh, {.keep_values = false});
+  std::vector<int> boundary_faces(mesh.cells.size(), 0);
+  for (int c : core::boundary(mesh).cell_of_face) ++boundary_faces[c];
+  f.multi_boundary_hexes = static_cast<int>(std::count_if(boundary_faces.begin(), boundary_faces.end(), [](int n) { return n >= 2; }));
   return f;
 }
 

@@ -40,6 +40,9 @@ struct MeshFigures {
   int hexes = 0;              //!< #H
   int singular_vertices = 0;  //!< #Sv
   int singular_edges = 0;     //!< #Se
+  //! Hexes with two or more faces on the boundary: what padding is for (they keep the angle of
+  //! a polycube edge where the surface is flat or curved; global padding leaves none).
+  int multi_boundary_hexes = 0;
   quality::ScaledJacobianSummary scaled_jacobian;  //!< mSJ, aSJ (no per-hex values)
 };
 

@@ -61,6 +61,8 @@ TEST_F(PadCli, GlobalPaddingWritesTheMeshTheLayerAndTheReport) {
   EXPECT_EQ(j["after"]["singular_vertices"], 16);
   EXPECT_EQ(j["before"]["singular_edges"], 48);
   EXPECT_EQ(j["after"]["singular_edges"], 56);  // 48 interior of valence 3, 8 pillars
+  EXPECT_EQ(j["before"]["multi_boundary_hexes"], 8 + 12 * 2);  // corners, then the edges' middles
+  EXPECT_EQ(j["after"]["multi_boundary_hexes"], 0);
   EXPECT_TRUE(j["check"]["ok"].get<bool>());
   EXPECT_LT(j["hausdorff"]["relative"].get<double>(), 0.009);
   EXPECT_GE(j["seconds"]["insertion"].get<double>(), 0.0);
