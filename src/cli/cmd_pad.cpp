@@ -25,7 +25,10 @@ struct PadCliOptions {
   std::string report;  //!< optional JSON report
   std::string facets;  //!< facet file; empty: global padding
   bool global = false;
+  bool selective = false;
   bool no_optimize = false;
+  padding::AnalysisOptions analysis;
+  padding::SelectionOptions selection;
   bool keep_failed = false;
   padding::PadOptions pad;
 };
@@ -82,17 +85,54 @@ void run_pad(const PadCliOptions& o) {
   if (d.hexes.empty()) throw core::InputError(o.input + ": no hexahedra to pad");
   const core::HexMesh mesh = core::hexes_of(d);
   const core::TriMesh target = read_target_surface(o.target);
-  const std::vector<std::uint8_t> selected = o.facets.empty()
-                                                 ? padding::boundary_selection(mesh)
-                                                 : padding::select_facets(mesh, read_facet_file(o.facets));
+  std::vector<std::uint8_t> selected;
+  nlohmann::json j;
+  std::string how = "global";
+  std::string plan_text;
+  if (o.selective) {
+    const padding::SelectivePlan plan = padding::plan_selective_padding(mesh, o.analysis, o.selection);
+    selected = plan.selection.facets;
+    how = "selective";
+    j["analysis"] = {{"threshold", o.analysis.threshold},
+                     {"propagation", o.analysis.propagation},
+                     {"analysed_hexes", plan.analysis.analysed_hexes},
+                     {"distorted_edges", plan.analysis.distorted_edges},
+                     {"hard_facets", plan.analysis.hard_facets},
+                     {"seconds", plan.analysis.seconds}};
+    const auto& sel = plan.selection;
+    j["selection"] = {{"lambda", o.selection.lambda}, {"selected_facets", sel.selected},
+                      {"edge_turns", sel.edge_turns},   {"vertex_turns", sel.vertex_turns},
+                      {"objective", sel.objective},     {"optimal", sel.optimal},
+                      {"gap", sel.gap},                 {"variables", sel.variables},
+                      {"rows", sel.rows},               {"seconds", sel.seconds}};
+    plan_text = fmt::format(
+        "  analysis: {} boundary hexes below SJ {}, {} distorted edges, |HF| = {} ({:.2f} s)\n"
+        "  binary problem: |PF| = {}, {} edge and {} vertex turns, {} ({} variables, {} rows, {:.2f} s)\n",
+        plan.analysis.analysed_hexes, o.analysis.threshold, plan.analysis.distorted_edges, plan.analysis.hard_facets,
+        plan.analysis.seconds, sel.selected, sel.edge_turns, sel.vertex_turns,
+        sel.optimal ? std::string("optimal") : fmt::format("not proven optimal, gap {:.1f}%", 100.0 * sel.gap),
+        sel.variables, sel.rows, sel.seconds);
+    if (sel.selected == 0) {
+      // Nothing is distorted enough to pad: the mesh stays as it is, and nothing is written.
+      j["input"] = o.input;
+      j["added_hexes"] = 0;
+      print_result(j, fmt::format("{}: nothing to pad (no boundary hex below the threshold needs it)\n", o.input) + plan_text);
+      if (!o.report.empty()) io::write_text_atomic(o.report, j.dump(2) + "\n");
+      return;
+    }
+  } else if (!o.facets.empty()) {
+    selected = padding::select_facets(mesh, read_facet_file(o.facets));
+    how = o.facets;
+  } else {
+    selected = padding::boundary_selection(mesh);
+  }
   padding::PadOptions opt = o.pad;
   opt.run_optimizer = !o.no_optimize;
   const padding::PadResult r = padding::pad_hex_mesh(mesh, target, selected, opt);
 
-  nlohmann::json j;
   j["input"] = o.input;
   j["target"] = o.target;
-  j["selection"] = o.facets.empty() ? "global" : o.facets;
+  j["padding"] = how;
   j["selected_facets"] = r.selected_facets;
   j["added_hexes"] = r.added_hexes;
   j["crossing_hexes"] = r.crossing_hexes;
@@ -102,8 +142,9 @@ void run_pad(const PadCliOptions& o) {
   j["check"] = foldover_json(r.check);
   j["seconds"] = {{"insertion", r.insert_seconds}, {"optimization", r.optimization.seconds}, {"total", r.seconds}};
 
-  std::string text = fmt::format("{}: {} facets padded ({}), {} hexes added\n", o.input, r.selected_facets,
-                                 o.facets.empty() ? "global" : o.facets, r.added_hexes);
+  std::string text = fmt::format("{}: {} facets padded ({}), {} hexes added\n", o.input, r.selected_facets, how,
+                                 r.added_hexes);
+  text += plan_text;
   text += figures_table(r);
   text += fmt::format("  Hausdorff to the target {:.6g} ({:.4f}% of its bounding-box diagonal)\n", r.distance.hausdorff,
                       100.0 * r.distance.relative);
@@ -142,6 +183,28 @@ void register_pad(CLI::App& app) {
                   "order of the mesh file's points); interior facets make sheets through the volume. The set must "
                   "keep an even number of padded facets around interior and concave edges")
       ->excludes(global);
+  auto* selective = sub->add_flag("--selective", opts->selective,
+                                  "Pad only where the polycube map distorts the shape (thesis ch. 4): mapping analysis, "
+                                  "then a binary problem for a valid facet set with few hexes and few turns")
+                        ->excludes(global);
+  sub->get_option("--facets")->excludes(selective);
+  sub->add_option("--lambda", opts->selection.lambda,
+                  "Selective: weight of the layer's turns (new singularities) against its hexes")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  sub->add_option("--threshold", opts->analysis.threshold,
+                  "Selective: boundary hexes with a scaled Jacobian at least this are left alone")
+      ->check(CLI::Range(-1.0, 1.0))
+      ->capture_default_str();
+  sub->add_option("--propagation", opts->analysis.propagation,
+                  "Selective: steps of the soft propagation of the distortion over the boundary")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  sub->add_option("--time-limit", opts->selection.time_limit,
+                  "Selective: seconds for the binary problem; past them the best facet set found is used and the "
+                  "report says it is not proven optimal, with the gap (0: no limit)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   sub->add_option("--offset", opts->pad.sheet.offset,
                   "Where the new layer starts: this fraction of the local edge length inside the padded facets' hexes")
       ->check(CLI::Range(0.01, 0.9))

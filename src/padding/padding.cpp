@@ -12,6 +12,7 @@ const char* mode_name(PaddingMode mode) {
   switch (mode) {
     case PaddingMode::None: return "none";
     case PaddingMode::Global: return "global";
+    case PaddingMode::Selective: return "selective";
   }
   return "?";
 }
@@ -48,6 +49,14 @@ PadResult pad_hex_mesh(const core::HexMesh& mesh, const core::TriMesh& target, c
   r.after = mesh_figures(r.mesh);
   r.seconds = clock.seconds();
   return r;
+}
+
+SelectivePlan plan_selective_padding(const core::HexMesh& mesh, const AnalysisOptions& analysis,
+                                     const SelectionOptions& selection) {
+  SelectivePlan plan;
+  plan.analysis = analyze_mapping(mesh, analysis);
+  plan.selection = select_facets_to_pad(mesh, plan.analysis.hard, selection);
+  return plan;
 }
 
 core::MeshData padded_mesh_data(const PadResult& result) {

@@ -9,6 +9,8 @@
 #include "core/types.h"
 #include "optimize/foldover_check.h"
 #include "optimize/hex_optimize.h"
+#include "padding/analysis.h"
+#include "padding/selection.h"
 #include "padding/sheet.h"
 #include "quality/scaled_jacobian.h"
 #include "quality/surface_distance.h"
@@ -22,10 +24,11 @@ namespace polycube::padding {
 //! Which facets are padded.
 enum class PaddingMode {
   None,    //!< no padding
-  Global,  //!< every boundary facet
+  Global,     //!< every boundary facet
+  Selective,  //!< where the map distorts the shape: mapping analysis, then the binary problem
 };
 
-//! "none" or "global".
+//! "none", "global" or "selective".
 const char* mode_name(PaddingMode mode);
 
 //! Options of pad_hex_mesh().
@@ -72,6 +75,17 @@ struct PadResult {
 //! \throw as insert_sheet and optimize::optimize_hex_mesh
 PadResult pad_hex_mesh(const core::HexMesh& mesh, const core::TriMesh& target, const std::vector<std::uint8_t>& selected,
                        const PadOptions& options = {});
+
+//! The facets selective padding pads: the mapping analysis's hard set HF (analysis.h), completed
+//! by the binary problem (selection.h).
+struct SelectivePlan {
+  Analysis analysis;
+  Selection selection;
+};
+
+//! Plan selective padding on a hex mesh. \throw as analyze_mapping and select_facets_to_pad
+SelectivePlan plan_selective_padding(const core::HexMesh& mesh, const AnalysisOptions& analysis = {},
+                                     const SelectionOptions& selection = {});
 
 //! The padded mesh as mesh data with the cell fields `padding_layer`, `source_hex` and, when the
 //! input had labels, `block` (the label of the hex each hex comes from), for ParaView.

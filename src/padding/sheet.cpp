@@ -5,9 +5,11 @@
 #include "core/errors.h"
 #include "core/stopwatch.h"
 #include "core/topology.h"
+#include "padding/padding_topology.h"
 #include "quality/structure_topology.h"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -18,58 +20,9 @@ namespace polycube::padding {
 namespace {
 
 using core::Vec3;
-
-//! The incidences the insertion needs, on top of quality::hex_topology.
-struct Topology {
-  quality::HexTopology t;
-  core::Adjacency vertex_faces;              //!< #V: facets containing each vertex (sorted)
-  core::Adjacency vertex_edges;              //!< #V: edges containing each vertex (sorted)
-  core::Adjacency vertex_hexes;              //!< #V: hexes containing each vertex (sorted)
-  std::vector<std::array<int, 2>> edge_boundary;  //!< #E: the two boundary facets of a boundary edge
-  int num_hexes = 0;
-
-  //! Cell key of the ghost glued outside boundary facet f (hexes are keys 0..#H-1).
-  [[nodiscard]] int ghost(int f) const { return num_hexes + f; }
-};
-
-core::Adjacency csr(int entries, std::vector<std::pair<int, int>> pairs) {
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  core::Adjacency a;
-  a.offsets.assign(static_cast<std::size_t>(entries) + 1, 0);
-  for (const auto& [e, i] : pairs) {
-    ++a.offsets[static_cast<std::size_t>(e) + 1];
-    a.items.push_back(i);
-  }
-  for (int e = 0; e < entries; ++e) a.offsets[e + 1] += a.offsets[e];
-  return a;
-}
-
-Topology build_topology(const core::HexMesh& mesh) {
-  Topology tp;
-  tp.t = quality::hex_topology(mesh);
-  tp.num_hexes = mesh.num_cells();
-  const int nv = mesh.num_points();
-  const int nf = tp.t.num_faces();
-  const int ne = tp.t.num_edges();
-  std::vector<std::pair<int, int>> vf, ve, vh;
-  for (int f = 0; f < nf; ++f)
-    for (int v : tp.t.faces.faces[f]) vf.emplace_back(v, f);
-  for (int e = 0; e < ne; ++e)
-    for (int v : tp.t.edges.edges[e]) ve.emplace_back(v, e);
-  for (int h = 0; h < tp.num_hexes; ++h)
-    for (int v : mesh.cells[h]) vh.emplace_back(v, h);
-  tp.vertex_faces = csr(nv, std::move(vf));
-  tp.vertex_edges = csr(nv, std::move(ve));
-  tp.vertex_hexes = csr(nv, std::move(vh));
-  tp.edge_boundary.assign(ne, {-1, -1});
-  for (int e = 0; e < ne; ++e) {
-    int k = 0;
-    for (int f : tp.t.edge_faces[e])
-      if (tp.t.faces.is_boundary(f) && k < 2) tp.edge_boundary[e][k++] = f;
-  }
-  return tp;
-}
+using detail::Topology;
+using detail::build_topology;
+using detail::cells_around;
 
 //! The input must be a hex mesh whose boundary is a closed 2-manifold (the ghosts need it).
 void require_closed_manifold(const core::HexMesh& mesh) {
@@ -294,45 +247,6 @@ Copies make_copies(const core::HexMesh& mesh, const Topology& tp, const std::vec
   }
   // Region 0 moved in place: copy_position read the input's points, not c.points.
   return c;
-}
-
-//! Cells around edge e in counter-clockwise order about its direction (edges[e][0] -> [1]): in a
-//! hex, the facet where that direction appears in the outward vertex order is the one the turn
-//! leaves by. At a boundary edge the cycle closes through the two ghosts.
-std::vector<int> cells_around(const core::HexMesh& mesh, const Topology& tp, int e) {
-  const auto [v, w] = tp.t.edges.edges[e];
-  std::map<int, std::array<int, 2>> entry_exit;  // hex -> {entry facet, exit facet}
-  for (int h : tp.t.edge_cells[e]) {
-    std::array<int, 2> ee{-1, -1};
-    for (int lf = 0; lf < 6; ++lf) {
-      const auto& q = core::kHexFaces[lf];
-      for (int k = 0; k < 4; ++k) {
-        const int a = mesh.cells[h][q[k]], b = mesh.cells[h][q[(k + 1) % 4]];
-        if (a == v && b == w) ee[1] = tp.t.faces.cell_faces[h][lf];
-        if (a == w && b == v) ee[0] = tp.t.faces.cell_faces[h][lf];
-      }
-    }
-    entry_exit[h] = ee;
-  }
-  int start = entry_exit.begin()->first;
-  for (const auto& [h, ee] : entry_exit)
-    if (tp.t.faces.is_boundary(ee[0])) start = h;
-  std::vector<int> cycle;
-  int h = start;
-  const int first_entry = entry_exit[start][0];
-  if (tp.t.faces.is_boundary(first_entry)) cycle.push_back(tp.ghost(first_entry));
-  for (std::size_t guard = 0; guard <= entry_exit.size(); ++guard) {
-    cycle.push_back(h);
-    const int exit = entry_exit[h][1];
-    const auto [c0, c1] = tp.t.faces.face_cells[exit];
-    if (c1 < 0) {
-      cycle.push_back(tp.ghost(exit));
-      break;
-    }
-    h = c0 == h ? c1 : c0;
-    if (h == start) break;
-  }
-  return cycle;
 }
 
 //! The hex filling the crossing at edge e (four regions around it), or an error.

@@ -47,6 +47,9 @@ struct LinearProgram {
 struct MilpOptions {
   double time_limit = 0.0;  //!< seconds for branch and cut (0: none); ignored for LPs
   double relative_gap = 0.0;  //!< stop branch and cut at this relative optimality gap
+  //! A feasible solution to start branch and cut from (#x values; empty: none). Checked: an
+  //! infeasible start is ignored. With a time limit, the result is never worse than the start.
+  std::vector<double> start;
 };
 
 //! Status of a solve.
@@ -57,6 +60,8 @@ struct MilpResult {
   MilpStatus status = MilpStatus::Failed;
   std::vector<double> x;   //!< #x solution (empty unless Optimal or Stopped with a solution)
   double objective = 0.0;  //!< c·x
+  //! Best lower bound on the optimum that branch and cut proved (= objective when Optimal).
+  double bound = 0.0;
   std::string solver;      //!< "CLP dual simplex" or "CBC branch and cut"
 };
 

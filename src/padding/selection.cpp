@@ -1,0 +1,260 @@
+#include "padding/selection.h"
+
+#include "core/errors.h"
+#include "core/stopwatch.h"
+#include "padding/padding_topology.h"
+#include "solve/milp.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace polycube::padding {
+
+namespace {
+
+using detail::Topology;
+
+//! Indices of the program's variables.
+struct Variables {
+  std::vector<int> hex;    //!< #H: y of each hex
+  std::vector<int> ghost;  //!< #F: y of the ghost of each boundary facet (-1 for interior facets)
+  std::vector<int> x;      //!< #F: facet selected
+  std::vector<int> z;      //!< #E: the two ghosts of a boundary edge on different sides (-1 elsewhere)
+  std::vector<int> te;     //!< #E: edge turn (-1 where none is counted)
+  std::vector<int> tv;     //!< #V: vertex turn (-1 where none is counted)
+};
+
+//! The two cells of facet f as variables (hex, other hex or ghost).
+std::array<int, 2> facet_cells(const Topology& tp, const Variables& v, int f) {
+  const auto [c0, c1] = tp.t.faces.face_cells[f];
+  return {v.hex[c0], c1 >= 0 ? v.hex[c1] : v.ghost[f]};
+}
+
+//! Add a row whose columns may be -1 (a variable that does not exist: fixed at 0), left out.
+void add_live_row(solve::LinearProgram& p, const std::vector<int>& cols, const std::vector<double>& coefs, double lo,
+                  double hi) {
+  std::vector<int> c;
+  std::vector<double> k;
+  for (std::size_t i = 0; i < cols.size(); ++i)
+    if (cols[i] >= 0) {
+      c.push_back(cols[i]);
+      k.push_back(coefs[i]);
+    }
+  if (!c.empty()) p.add_row(std::move(c), std::move(k), lo, hi);
+}
+
+//! w ≥ |a − b| (two rows); with `exact`, also w ≤ a + b and w ≤ 2 − a − b (w = a XOR b).
+//! a and b may be -1 (none: 0).
+void add_xor(solve::LinearProgram& p, int w, int a, int b, bool exact) {
+  add_live_row(p, {w, a, b}, {1, -1, 1}, 0, solve::kInfinity);
+  add_live_row(p, {w, a, b}, {1, 1, -1}, 0, solve::kInfinity);
+  if (!exact) return;
+  add_live_row(p, {w, a, b}, {1, -1, -1}, -solve::kInfinity, 0);
+  add_live_row(p, {w, a, b}, {1, 1, 1}, -solve::kInfinity, 2);
+}
+
+//! Opposite facet pairs around an edge (two apart in the turning order): a straight sheet
+//! selects both or neither.
+std::vector<std::array<int, 2>> opposite_facets(const std::vector<int>& around) {
+  if (around.size() == 3) return {{around[0], around[2]}};
+  if (around.size() == 4) return {{around[0], around[2]}, {around[1], around[3]}};
+  return {};
+}
+
+struct Model {
+  solve::LinearProgram program;
+  Variables v;
+  std::vector<std::vector<std::array<int, 2>>> pairs;  //!< #E: opposite facet pairs of te edges
+  std::vector<std::vector<std::array<int, 2>>> edge_pairs;  //!< #V: opposite te-edge pairs
+};
+
+//! Edges where HF itself turns (two of its facets around the edge, not opposite), and the
+//! vertices on them: their turns are in every solution, so they are not counted.
+void forced_turns(const core::HexMesh& mesh, const Topology& tp, const std::vector<std::uint8_t>& hard,
+                  std::vector<std::uint8_t>& edge_forced, std::vector<std::uint8_t>& vertex_forced) {
+  edge_forced.assign(tp.t.num_edges(), 0);
+  vertex_forced.assign(mesh.points.size(), 0);
+  for (int e = 0; e < tp.t.num_edges(); ++e) {
+    if (!tp.t.edge_on_boundary[e]) continue;
+    const auto [b1, b2] = tp.edge_boundary[e];
+    if (b1 < 0 || b2 < 0 || !hard[b1] || !hard[b2]) continue;
+    if (tp.t.edge_valence(e) == 2) continue;  // E2H: the two surface facets are opposite
+    edge_forced[e] = 1;
+    for (int w : tp.t.edges.edges[e]) vertex_forced[w] = 1;
+  }
+}
+
+Model build_model(const core::HexMesh& mesh, const Topology& tp, const std::vector<std::uint8_t>& hard,
+                  const SelectionOptions& o) {
+  Model m;
+  solve::LinearProgram& p = m.program;
+  Variables& v = m.v;
+  const int nf = tp.t.num_faces(), ne = tp.t.num_edges();
+  const double hexes = static_cast<double>(mesh.num_cells());
+  const double w_facet = std::pow(hexes, -2.0 / 3.0);
+  const double w_edge = o.lambda * std::pow(hexes, -1.0 / 3.0);
+  const double w_vertex = o.lambda;
+
+  v.hex.resize(mesh.cells.size());
+  for (auto& y : v.hex) y = p.add_variable(0, 0, 1, true);
+  v.ghost.assign(nf, -1);
+  for (int f = 0; f < nf; ++f)
+    if (tp.t.faces.is_boundary(f)) v.ghost[f] = p.add_variable(0, 0, 1, true);
+  for (int f = 0; f < nf; ++f)
+    if (hard[f]) {  // equation 4.2: the hex inside, its ghost outside
+      p.lower[v.hex[tp.t.faces.face_cells[f][0]]] = 1;
+      p.upper[v.ghost[f]] = 0;
+    }
+  v.x.resize(nf);
+  for (int f = 0; f < nf; ++f) v.x[f] = p.add_variable(hard[f] ? 0.0 : w_facet, 0, 1);
+
+  std::vector<std::uint8_t> edge_forced, vertex_forced;
+  forced_turns(mesh, tp, hard, edge_forced, vertex_forced);
+  std::vector<std::uint8_t> exact(nf, 0);  // facets in a rule or turn row need x = XOR exactly
+  v.z.assign(ne, -1);
+  v.te.assign(ne, -1);
+  m.pairs.resize(ne);
+  for (int e = 0; e < ne; ++e) {
+    const std::vector<int> around = detail::facets_around(mesh, tp, e);
+    const bool boundary = tp.t.edge_on_boundary[e] != 0;
+    const int valence = tp.t.edge_valence(e);
+    if (boundary) {
+      const auto [b1, b2] = tp.edge_boundary[e];
+      if (valence >= 3) {
+        add_live_row(p, {v.ghost[b1], v.ghost[b2]}, {1, -1}, 0, 0);  // E3H: an even count
+      } else if (v.ghost[b1] >= 0 || v.ghost[b2] >= 0) {
+        v.z[e] = p.add_variable(0, 0, 1);
+        add_xor(p, v.z[e], v.ghost[b1], v.ghost[b2], false);
+      }
+      if (valence == 2 && around.size() == 3) {  // E2H: not one surface facet alone
+        const int g = around[1];
+        add_live_row(p, {v.x[b1], v.z[e], v.x[g], v.x[b2]}, {1, 1, -1, -1}, -solve::kInfinity, 1);
+        add_live_row(p, {v.x[b2], v.z[e], v.x[g], v.x[b1]}, {1, 1, -1, -1}, -solve::kInfinity, 1);
+        for (int f : around) exact[f] = 1;
+      }
+    }
+    // Sheets do not cross: at most two separations around an edge (selection.h).
+    const int separations = static_cast<int>(tp.t.edge_faces[e].size()) + (v.z[e] >= 0 ? 1 : 0);
+    if (separations > 2) {
+      std::vector<int> cols;
+      for (int f : tp.t.edge_faces[e]) cols.push_back(v.x[f]);
+      cols.push_back(v.z[e]);
+      add_live_row(p, cols, std::vector<double>(cols.size(), 1.0), -solve::kInfinity, 2);
+    }
+    if (o.lambda <= 0 || valence == 1 || edge_forced[e]) continue;
+    m.pairs[e] = opposite_facets(around);
+    std::erase_if(m.pairs[e], [&](const std::array<int, 2>& q) { return v.x[q[0]] < 0 && v.x[q[1]] < 0; });
+    if (m.pairs[e].empty()) continue;
+    v.te[e] = p.add_variable(w_edge, 0, 1);
+    for (const auto& [a, b] : m.pairs[e]) {  // equation 4.5
+      add_xor(p, v.te[e], v.x[a], v.x[b], false);
+      exact[a] = exact[b] = 1;
+    }
+  }
+  for (int f = 0; f < nf; ++f) {
+    if (v.x[f] < 0) continue;
+    const auto [a, b] = facet_cells(tp, v, f);
+    add_xor(p, v.x[f], a, b, exact[f] != 0);
+  }
+
+  // Equation 4.6: opposite edges at a vertex (no facet holds both) turn together.
+  v.tv.assign(mesh.points.size(), -1);
+  m.edge_pairs.resize(mesh.points.size());
+  for (int vert = 0; o.lambda > 0 && vert < mesh.num_points(); ++vert) {
+    if (vertex_forced[vert] || tp.vertex_hexes[vert].size() <= 1) continue;
+    std::vector<int> edges;
+    for (int e : tp.vertex_edges[vert])
+      if (v.te[e] >= 0) edges.push_back(e);
+    for (std::size_t i = 0; i < edges.size(); ++i)
+      for (std::size_t j = i + 1; j < edges.size(); ++j) {
+        bool share = false;
+        for (int f : tp.t.edge_faces[edges[i]])
+          share = share || std::find(tp.t.edge_faces[edges[j]].begin(), tp.t.edge_faces[edges[j]].end(), f) !=
+                               tp.t.edge_faces[edges[j]].end();
+        if (!share) m.edge_pairs[vert].push_back({edges[i], edges[j]});
+      }
+    if (m.edge_pairs[vert].empty()) continue;
+    v.tv[vert] = p.add_variable(w_vertex, 0, 1);
+    for (const auto& [a, b] : m.edge_pairs[vert]) add_xor(p, v.tv[vert], v.te[a], v.te[b], false);
+  }
+  return m;
+}
+
+//! Turn indicators of a selection, as the rows define them (the largest difference of a pair).
+void turns_of(const Model& m, const std::vector<double>& x_of_facet, std::vector<double>& te, std::vector<double>& tv) {
+  te.assign(m.v.te.size(), 0.0);
+  tv.assign(m.v.tv.size(), 0.0);
+  for (std::size_t e = 0; e < te.size(); ++e)
+    for (const auto& [a, b] : m.pairs[e]) te[e] = std::max(te[e], std::abs(x_of_facet[a] - x_of_facet[b]));
+  for (std::size_t w = 0; w < tv.size(); ++w)
+    for (const auto& [a, b] : m.edge_pairs[w]) tv[w] = std::max(tv[w], std::abs(te[a] - te[b]));
+}
+
+//! The cut that pads every surface facet: every hex inside, every ghost outside.
+std::vector<double> surface_start(const Model& m, const Topology& tp) {
+  const Variables& v = m.v;
+  std::vector<double> s(static_cast<std::size_t>(m.program.num_variables()), 0.0);
+  for (int y : v.hex) s[y] = 1.0;
+  std::vector<double> x(v.x.size(), 0.0);
+  for (int f = 0; f < tp.t.num_faces(); ++f) x[f] = tp.t.faces.is_boundary(f) ? 1.0 : 0.0;
+  for (std::size_t f = 0; f < x.size(); ++f) s[v.x[f]] = x[f];
+  for (std::size_t e = 0; e < v.z.size(); ++e)
+    if (v.z[e] >= 0) s[v.z[e]] = 0.0;
+  std::vector<double> te, tv;
+  turns_of(m, x, te, tv);
+  for (std::size_t e = 0; e < te.size(); ++e)
+    if (v.te[e] >= 0) s[v.te[e]] = te[e];
+  for (std::size_t w = 0; w < tv.size(); ++w)
+    if (v.tv[w] >= 0) s[v.tv[w]] = tv[w];
+  return s;
+}
+
+}  // namespace
+
+Selection select_facets_to_pad(const core::HexMesh& mesh, const std::vector<std::uint8_t>& hard,
+                               const SelectionOptions& options) {
+  const core::Stopwatch clock;
+  const Topology tp = detail::build_topology(mesh);
+  if (static_cast<int>(hard.size()) != tp.t.num_faces())
+    throw core::InputError(fmt::format("hard set has {} flags for a mesh of {} facets", hard.size(), tp.t.num_faces()));
+  for (int f = 0; f < tp.t.num_faces(); ++f)
+    if (hard[f] && !tp.t.faces.is_boundary(f))
+      throw core::InputError(fmt::format("hard set: facet {} is not on the boundary", f));
+  if (!(options.lambda >= 0) || !(options.time_limit >= 0))
+    throw core::InputError(fmt::format("selection: lambda and the time limit must be >= 0 (got {}, {})",
+                                       options.lambda, options.time_limit));
+  const Model m = build_model(mesh, tp, hard, options);
+  solve::MilpOptions mo;
+  mo.time_limit = options.time_limit;
+  mo.start = surface_start(m, tp);
+  const solve::MilpResult r = solve::solve_program(m.program, mo);
+  if (r.x.empty())
+    throw core::SolverError(fmt::format("selective padding: CBC found no solution ({})", solve::status_name(r.status)));
+
+  Selection s;
+  s.facets.assign(tp.t.num_faces(), 0);
+  std::vector<double> x(tp.t.num_faces(), 0.0);
+  for (int f = 0; f < tp.t.num_faces(); ++f) {
+    const auto [a, b] = facet_cells(tp, m.v, f);
+    const auto y = [&](int var) { return var >= 0 ? std::lround(r.x[var]) : 0L; };
+    const bool cut = y(a) != y(b);
+    s.facets[f] = cut ? 1 : 0;
+    x[f] = cut ? 1.0 : 0.0;
+  }
+  std::vector<double> te, tv;
+  turns_of(m, x, te, tv);
+  for (std::size_t e = 0; e < te.size(); ++e) s.edge_turns += (m.v.te[e] >= 0 && te[e] > 0.5) ? 1 : 0;
+  for (std::size_t w = 0; w < tv.size(); ++w) s.vertex_turns += (m.v.tv[w] >= 0 && tv[w] > 0.5) ? 1 : 0;
+  s.selected = static_cast<int>(std::count(s.facets.begin(), s.facets.end(), 1));
+  s.objective = r.objective;
+  s.optimal = r.status == solve::MilpStatus::Optimal;
+  s.gap = s.optimal || r.objective == 0 ? 0.0 : std::max(0.0, (r.objective - r.bound) / std::abs(r.objective));
+  s.variables = m.program.num_variables();
+  s.rows = m.program.num_rows();
+  s.seconds = clock.seconds();
+  return s;
+}
+
+}  // namespace polycube::padding

@@ -1,0 +1,139 @@
+// Selective padding (thesis §4.3–4.4): the mapping analysis on grids whose distortion is known by
+// hand, and the binary problem on hard sets whose best completion is known by hand.
+#include "core/topology.h"
+#include "padding/analysis.h"
+#include "padding/padding.h"
+#include "padding/selection.h"
+#include "padding/sheet.h"
+#include "quality/singularities.h"
+#include "support/fixtures.h"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+
+namespace polycube {
+namespace {
+
+using core::Vec3;
+
+std::vector<std::uint8_t> boundary_facets_where(const core::HexMesh& m, const std::function<bool(const Vec3&)>& pick) {
+  const auto faces = core::unique_faces(m);
+  std::vector<std::uint8_t> sel(faces.num_faces(), 0);
+  for (int f = 0; f < faces.num_faces(); ++f) {
+    if (!faces.is_boundary(f)) continue;
+    bool all = true;
+    for (int v : faces.faces[f]) all = all && pick(m.points[v]);
+    sel[f] = all ? 1 : 0;
+  }
+  return sel;
+}
+
+int count(const std::vector<std::uint8_t>& s) { return static_cast<int>(std::count(s.begin(), s.end(), 1)); }
+
+TEST(MappingAnalysis, AnUndistortedGridNeedsNoPadding) {
+  const padding::Analysis a = padding::analyze_mapping(test::hex_grid(3, 3, 3));
+  EXPECT_EQ(a.analysed_hexes, 0);
+  EXPECT_EQ(a.distorted_edges, 0);
+  EXPECT_EQ(a.hard_facets, 0);
+}
+
+TEST(MappingAnalysis, AFlattenedConvexEdgeMakesItsFacetsHard) {
+  // The top-front edge of a 3 x 3 x 3 grid chamfered at 45°: its two facets per hex become
+  // coplanar (θ = 1), so D = 1 on the 6 facets along it and on no other facet before the
+  // propagation; the minimum cut keeps them in HF.
+  core::HexMesh m = test::hex_grid(3, 3, 3);
+  for (Vec3& p : m.points)
+    if (p.y() == 0.0 && p.z() == 3.0) p = Vec3(p.x(), 0.5, 2.5);
+  const padding::Analysis a = padding::analyze_mapping(m, {.threshold = 0.6, .propagation = 0});
+  EXPECT_EQ(a.distorted_edges, 3);
+  int hard = 0, with_d = 0;
+  for (std::size_t f = 0; f < a.distortion.size(); ++f) {
+    with_d += a.distortion[f] > 0 ? 1 : 0;
+    if (a.distortion[f] > 0) EXPECT_NEAR(a.distortion[f], 1.0, 1e-12);
+    hard += a.hard[f];
+  }
+  EXPECT_EQ(with_d, 6);
+  EXPECT_GE(hard, 6);
+  for (std::size_t f = 0; f < a.distortion.size(); ++f)
+    if (a.distortion[f] > 0) EXPECT_EQ(a.hard[f], 1);
+}
+
+TEST(MappingAnalysis, PropagationFillsTheNeighboursAndKeepsTheSource) {
+  core::HexMesh m = test::hex_grid(3, 3, 3);
+  for (Vec3& p : m.points)
+    if (p.y() == 0.0 && p.z() == 3.0) p = Vec3(p.x(), 0.5, 2.5);
+  const padding::Analysis a = padding::analyze_mapping(m, {.threshold = 0.6, .propagation = 2});
+  int raised = 0;
+  for (std::size_t f = 0; f < a.distortion.size(); ++f) {
+    if (a.distortion[f] > 0) EXPECT_EQ(a.propagated[f], a.distortion[f]);
+    if (a.distortion[f] == 0 && a.propagated[f] > 0) {
+      ++raised;
+      EXPECT_LE(a.propagated[f], 1.0);
+    }
+  }
+  EXPECT_GT(raised, 0);
+}
+
+TEST(BinaryProblem, AWholeFaceIsPaddedAsItIs) {
+  const core::HexMesh g = test::hex_grid(3, 3, 3);
+  const auto hard = boundary_facets_where(g, [](const Vec3& p) { return p.z() == 3.0; });
+  const padding::Selection s = padding::select_facets_to_pad(g, hard);
+  EXPECT_TRUE(s.optimal);
+  EXPECT_EQ(s.facets, hard);
+  EXPECT_EQ(s.edge_turns + s.vertex_turns, 0);
+}
+
+TEST(BinaryProblem, OneFacetInTheMiddleOfAFaceIsClosedByABubbleOrByItsFace) {
+  // Thesis figure 4.7: one facet cannot be padded alone (its edges are E2H). On a 3 x 3 x 3 grid
+  // the cheapest valid completion without turn costs is the other 5 facets of its hex (a sheet
+  // around that one hex, w = 27^(-2/3) each); with λ = 1 that bubble's 12 edge and 8 vertex
+  // turns cost more than the 8 other facets of the face, which make no turn.
+  const core::HexMesh g = test::hex_grid(3, 3, 3);
+  const auto hard = boundary_facets_where(
+      g, [](const Vec3& p) { return p.z() == 3.0 && p.x() >= 1 && p.x() <= 2 && p.y() >= 1 && p.y() <= 2; });
+  ASSERT_EQ(count(hard), 1);
+  const padding::Selection bubble = padding::select_facets_to_pad(g, hard, {.lambda = 0.0, .time_limit = 60});
+  EXPECT_TRUE(bubble.optimal);
+  EXPECT_EQ(bubble.selected, 6);
+  const auto faces = core::unique_faces(g);
+  for (int f = 0; f < faces.num_faces(); ++f)
+    if (bubble.facets[f]) {
+      const int h = 1 + 3 * (1 + 3 * 2);  // the hex (1, 1, 2) under the facet
+      EXPECT_TRUE(faces.face_cells[f][0] == h || faces.face_cells[f][1] == h);
+    }
+  const padding::Selection face = padding::select_facets_to_pad(g, hard, {.lambda = 1.0, .time_limit = 60});
+  EXPECT_TRUE(face.optimal);
+  EXPECT_EQ(face.facets, boundary_facets_where(g, [](const Vec3& p) { return p.z() == 3.0; }));
+  EXPECT_EQ(face.edge_turns + face.vertex_turns, 0);
+}
+
+TEST(BinaryProblem, ALargerLambdaNeverAddsTurns) {
+  // A 2 x 2 patch on top of a 6 x 6 x 3 slab (thesis figure 4.5): without turn costs a sheet
+  // under the patch (12 interior facets, turning at its rim) is cheapest; with λ = 1 and more,
+  // the whole top face (32 more facets, no turn).
+  const core::HexMesh g = test::hex_grid(6, 6, 3);
+  const auto hard = boundary_facets_where(
+      g, [](const Vec3& p) { return p.z() == 3.0 && p.x() >= 2 && p.x() <= 4 && p.y() >= 2 && p.y() <= 4; });
+  ASSERT_EQ(count(hard), 4);
+  int previous_turns = 1 << 30, previous_facets = 0;
+  for (double lambda : {0.0, 1.0, 2.0, 4.0}) {
+    const padding::Selection s = padding::select_facets_to_pad(g, hard, {.lambda = lambda, .time_limit = 60});
+    SCOPED_TRACE(lambda);
+    EXPECT_TRUE(s.optimal);
+    EXPECT_LE(s.edge_turns + s.vertex_turns, previous_turns);
+    EXPECT_GE(s.selected, previous_facets);
+    previous_turns = s.edge_turns + s.vertex_turns;
+    previous_facets = s.selected;
+    for (std::size_t f = 0; f < hard.size(); ++f)
+      if (hard[f]) EXPECT_EQ(s.facets[f], 1);
+    EXPECT_TRUE(padding::check_selection(g, s.facets).ok());
+    const padding::SheetResult r = padding::insert_sheet(g, s.facets);
+    EXPECT_EQ(r.added_hexes, s.selected);
+    if (lambda == 0.0) EXPECT_EQ(s.selected, 4 + 12);
+    if (lambda >= 1.0) EXPECT_EQ(s.selected, 36);
+  }
+}
+
+}  // namespace
+}  // namespace polycube
