@@ -64,6 +64,9 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
                    {"singular_vertices_after", r.singular_vertices_after},
                    {"singular_edges_after", r.singular_edges_after},
                    {"insert_seconds", r.padding_insert_seconds},
+                   {"hard_facets", r.padding_hard_facets},
+                   {"plan_seconds", r.padding_plan_seconds},
+                   {"plan_optimal", r.padding_plan_optimal},
                    {"optimize_seconds", r.padding_optimize_seconds}}},
       {"hex_domains_before", r.hex_domains_before},
       {"hex_domains_after", r.hex_domains_after},
@@ -107,7 +110,7 @@ std::string summary_table(const pipeline::RunResult& r) {
     else if (s.name == "optimize")
       what = fmt::format("{} iterations{}", count(r.iterations_optimize),
                          r.optimize_fallback == "none"             ? std::string()
-                         : r.optimize_fallback == "global padding" ? ", fell back to global padding: " + padding_summary(r)
+                         : r.optimize_fallback.ends_with("padding") ? ", fell back to " + r.optimize_fallback + ": " + padding_summary(r)
                                                                    : ", regridded: " + r.optimize_fallback);
     else if (s.name == "pad")
       what = padding_summary(r);
@@ -172,11 +175,13 @@ void register_run(CLI::App& app) {
   sub->add_flag("--no-simplify", opts->no_simplify, "Mesh the constructed map without corner alignment");
   sub->add_flag("--no-optimize", opts->no_optimize, "Keep the gridded hex mesh as it is");
   sub->add_option("--padding", opts->run.padding,
-                  "After optimizing: 'none', or 'global' (a layer of hexes under the whole boundary, optimized "
-                  "again; writes hex_padded.mesh and hex_padded.vtk)")
+                  "After optimizing: 'none', 'global' (a layer of hexes under the whole boundary) or 'selective' "
+                  "(only where the polycube map distorts the shape; thesis ch. 4); the padded mesh is optimized again "
+                  "and written as hex_padded.mesh and hex_padded.vtk")
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, padding::PaddingMode>{{"none", padding::PaddingMode::None},
-                                                      {"global", padding::PaddingMode::Global}},
+                                                      {"global", padding::PaddingMode::Global},
+                                                      {"selective", padding::PaddingMode::Selective}},
           CLI::ignore_case))
       ->default_str("none");
   auto& c = opts->run.construct;

@@ -143,14 +143,30 @@ optimize::FoldoverReport optimize_and_check(core::HexMesh& hex, const ConstructI
   return optimize::check_foldover(hex);
 }
 
-//! Pad the mesh globally, optimize and check it (padding/padding.h); record the figures and
-//! write hex_padded.mesh and hex_padded.vtk when the result passes the check. A facet set the
-//! insertion refuses comes back as an error, like a failed check.
-padding::PadResult pad_and_record(const core::HexMesh& hex, const ConstructInput& in, const RunOptions& o,
-                                  const std::string& how, const std::filesystem::path& out_dir, RunResult& r,
-                                  const std::function<void(const std::filesystem::path&)>& wrote) {
-  padding::PadResult p =
-      padding::pad_hex_mesh(hex, in.target, padding::boundary_selection(hex), o.padding_options);
+//! The facets `mode` pads on this mesh; empty when selective padding finds nothing to pad.
+std::vector<std::uint8_t> padding_facets(const core::HexMesh& hex, padding::PaddingMode mode, const RunOptions& o,
+                                         RunResult& r) {
+  if (mode == padding::PaddingMode::Global) return padding::boundary_selection(hex);
+  const padding::SelectivePlan plan =
+      padding::plan_selective_padding(hex, o.padding_analysis, o.padding_selection);
+  r.padding_hard_facets = plan.analysis.hard_facets;
+  r.padding_plan_seconds = plan.analysis.seconds + plan.selection.seconds;
+  r.padding_plan_optimal = plan.selection.optimal;
+  if (plan.selection.selected == 0) return {};
+  return plan.selection.facets;
+}
+
+//! Pad the mesh (`mode`), optimize and check it (padding/padding.h); record the figures and
+//! write hex_padded.mesh and hex_padded.vtk when the result passes the check. Nothing when
+//! there is nothing to pad. A facet set the insertion refuses comes back as an error, like a
+//! failed check.
+std::optional<padding::PadResult> pad_and_record(const core::HexMesh& hex, const ConstructInput& in,
+                                                 const RunOptions& o, padding::PaddingMode mode, const std::string& how,
+                                                 const std::filesystem::path& out_dir, RunResult& r,
+                                                 const std::function<void(const std::filesystem::path&)>& wrote) {
+  const std::vector<std::uint8_t> facets = padding_facets(hex, mode, o, r);
+  if (facets.empty()) return std::nullopt;
+  padding::PadResult p = padding::pad_hex_mesh(hex, in.target, facets, o.padding_options);
   r.padding = how;
   r.padding_added = p.added_hexes;
   r.singular_vertices_before = p.before.singular_vertices;
@@ -312,16 +328,24 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
         r.optimize_tried.push_back(
             fmt::format("{}: {}", r.optimize_fallback == "none" ? "first grid" : r.optimize_fallback, why));
       };
-      // Padding first: the new layer frees the boundary hexes the gridding squashed, and costs
-      // one optimization instead of a new gridding's (thesis ch. 4).
-      if (!why.empty() && o.optimize_fallbacks) {
+      // Padding first (selective, then global): the new layer frees the boundary hexes the
+      // gridding squashed, and costs one optimization instead of a new gridding's (thesis ch. 4).
+      for (const padding::PaddingMode mode : {padding::PaddingMode::Selective, padding::PaddingMode::Global}) {
+        if (why.empty() || !o.optimize_fallbacks) break;
+        const std::string name = fmt::format("{} padding", padding::mode_name(mode));
         record_failure();
-        core::logger().warn("optimize: {}; padding the mesh globally", why);
-        r.optimize_fallback = "global padding";
+        core::logger().warn("optimize: {}; trying {}", why, name);
+        r.optimize_fallback = name;
         try {
-          padding::PadResult p = pad_and_record(hex, in, o, "global (optimize fallback)", out_dir, r, add_file);
-          why = why_failed(p.check);
-          if (why.empty()) hex = std::move(p.mesh);
+          std::optional<padding::PadResult> p =
+              pad_and_record(hex, in, o, mode, fmt::format("{} (optimize fallback)", padding::mode_name(mode)), out_dir,
+                             r, add_file);
+          if (!p) {
+            why = "nothing to pad";
+            continue;
+          }
+          why = why_failed(p->check);
+          if (why.empty()) hex = std::move(p->mesh);
           else discard_padded(out_dir, r);
         } catch (const core::Error& e) {
           why = e.what();
@@ -344,10 +368,15 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   // 6. padding on request (unless the optimize stage has padded already)
   if (o.padding != padding::PaddingMode::None && r.ok() && r.padding == "none")
     run.stage("pad", [&] {
-      padding::PadResult p = pad_and_record(hex, in, o, padding::mode_name(o.padding), out_dir, r, add_file);
-      if (!p.check.ok())
-        throw core::GeometryError("the padded hex mesh fails the global fold-over check: " + fold_summary(p.check));
-      hex = std::move(p.mesh);
+      std::optional<padding::PadResult> p =
+          pad_and_record(hex, in, o, o.padding, padding::mode_name(o.padding), out_dir, r, add_file);
+      if (!p) {
+        r.padding = "none (nothing to pad)";
+        return;
+      }
+      if (!p->check.ok())
+        throw core::GeometryError("the padded hex mesh fails the global fold-over check: " + fold_summary(p->check));
+      hex = std::move(p->mesh);
     });
 
   // 7. quality of the final hex mesh

@@ -43,13 +43,17 @@ struct RunOptions {
   mesh::GridSizing grid_sizing = mesh::GridSizing::Uniform;  //!< cells per chart interval (mesh/grid.h)
   bool optimize = true;                    //!< optimize the gridded hex mesh
   optimize::OptimizeOptions optimize_options;
-  //! When the optimized mesh fails the fold-over check: pad it globally and optimize again;
+  //! When the optimized mesh fails the fold-over check: pad it selectively, then globally, and
+  //! optimize again;
   //! then grid the map again with its own sizing, then twice as fine, and optimize each
   //! (hex.mesh and quad.vtk are replaced).
   bool optimize_fallbacks = true;
-  //! Padding after the optimization (stage "pad"): none, or a layer under the whole boundary.
+  //! Padding after the optimization (stage "pad"): none, a layer under the whole boundary, or
+  //! selective (where the map distorts the shape).
   padding::PaddingMode padding = padding::PaddingMode::None;
   padding::PadOptions padding_options;
+  padding::AnalysisOptions padding_analysis;    //!< selective padding's mapping analysis
+  padding::SelectionOptions padding_selection;  //!< selective padding's binary problem
   //! Called when a stage starts: (1-based index, number of stages, name).
   std::function<void(int, int, const std::string&)> on_stage;
   //! Fault injection, for tests of the failure handling only (the hidden `--inject-failure`
@@ -102,7 +106,11 @@ struct RunResult {
   std::string optimize_fallback = "none";   //!< the gridding whose optimized mesh passed ("none": the first)
   std::vector<std::string> optimize_tried;  //!< why the earlier griddings' results failed
   // padding (requested, or the optimize stage's fallback)
-  std::string padding = "none";        //!< "none", "global", or "global (optimize fallback)"
+  //! "none", "global", "selective", "none (nothing to pad)", or "<mode> (optimize fallback)"
+  std::string padding = "none";
+  int padding_hard_facets = -1;        //!< selective: |HF|
+  double padding_plan_seconds = -1;    //!< selective: mapping analysis + binary problem
+  bool padding_plan_optimal = false;   //!< selective: the binary problem was solved to optimality
   int padding_added = -1;              //!< hexes of the new layer
   int singular_vertices_before = -1, singular_edges_before = -1;  //!< #Sv, #Se before padding
   int singular_vertices_after = -1, singular_edges_after = -1;    //!< ... after

@@ -415,8 +415,8 @@ TEST(RunCli, SimplifyFallsBackStepByStepAndTheReportNamesTheStep) {
 }
 
 // The optimizer's fallbacks (pipeline.h), reached by `--inject-failure optimize-step-N` (the
-// first N optimized meshes count as failing the fold-over check): the mesh is padded globally,
-// then the map is gridded again with its own sizing, then twice as fine; the report names the
+// first N optimized meshes count as failing the fold-over check): the mesh is padded
+// selectively (nothing to pad on a box), then globally, then the map is gridded again with its own sizing, then twice as fine; the report names the
 // fallback that passed, and hex.mesh is the gridding that was optimized. When all fail, the
 // stage fails with exit 3.
 TEST(RunCli, OptimizeFallsBackToPaddingThenNewGriddingsAndTheReportNamesThem) {
@@ -431,8 +431,10 @@ TEST(RunCli, OptimizeFallsBackToPaddingThenNewGriddingsAndTheReportNamesThem) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto j = read_report(out);
     EXPECT_EQ(j["optimize_fallback"], expected[n - 1]);
-    ASSERT_EQ(j["optimize_tried"].size(), static_cast<std::size_t>(n));
+    // The box's hexes are all good: selective padding finds nothing to pad and passes on.
+    ASSERT_EQ(j["optimize_tried"].size(), static_cast<std::size_t>(n + 1));
     EXPECT_EQ(j["optimize_tried"][0], "first grid: injected failure");
+    EXPECT_EQ(j["optimize_tried"][1], "selective padding: nothing to pad");
     EXPECT_EQ(j["final"]["inverted"], 0);
     const core::HexMesh gridded = core::hexes_of(io::read_mesh(out / "hex.mesh"));
     const core::HexMesh final_mesh = core::hexes_of(io::read_mesh(out / "hex_optimized.mesh"));
@@ -458,7 +460,7 @@ TEST(RunCli, OptimizeFallsBackToPaddingThenNewGriddingsAndTheReportNamesThem) {
   EXPECT_GT(hexes[2], hexes[1]);  // twice the target: a finer grid
   const CliResult r = run(dir / "box.obj", dir / "out4", "--hexes 200 --inject-failure optimize-step-4");
   expect_stopped_at(r, dir / "out4", "optimize", 3, {"input", "construct", "simplify", "hexmesh"});
-  EXPECT_EQ(read_report(dir / "out4")["optimize_tried"].size(), 3u);
+  EXPECT_EQ(read_report(dir / "out4")["optimize_tried"].size(), 4u);
 }
 
 TEST(RunCli, GlobalPaddingOnRequestAddsThePadStage) {
