@@ -22,6 +22,7 @@ struct PadCliOptions {
   std::string target;
   std::string output;
   std::string vtk;     //!< optional VTK copy with the padding_layer / source_hex / block fields
+  std::string plan_vtk;  //!< selective: the analysis and the selection as boundary quads (VTK)
   std::string report;  //!< optional JSON report
   std::string facets;  //!< facet file; empty: global padding
   bool global = false;
@@ -93,6 +94,10 @@ void run_pad(const PadCliOptions& o) {
     const padding::SelectivePlan plan = padding::plan_selective_padding(mesh, o.analysis, o.selection);
     selected = plan.selection.facets;
     how = "selective";
+    if (!o.plan_vtk.empty()) {
+      io::write_mesh(o.plan_vtk, padding::plan_mesh_data(mesh, plan));
+      j["plan_vtk"] = o.plan_vtk;
+    }
     j["analysis"] = {{"threshold", o.analysis.threshold},
                      {"propagation", o.analysis.propagation},
                      {"analysed_hexes", plan.analysis.analysed_hexes},
@@ -188,6 +193,9 @@ void register_pad(CLI::App& app) {
                                   "then a binary problem for a valid facet set with few hexes and few turns")
                         ->excludes(global);
   sub->get_option("--facets")->excludes(selective);
+  sub->add_option("--plan-vtk", opts->plan_vtk,
+                  "Selective: write the boundary facets (and the padded interior ones) as a VTK quad mesh with the "
+                  "cell fields distortion, propagated, hard (HF) and padded (PF)");
   sub->add_option("--lambda", opts->selection.lambda,
                   "Selective: weight of the layer's turns (new singularities) against its hexes")
       ->check(CLI::NonNegativeNumber)

@@ -59,6 +59,23 @@ SelectivePlan plan_selective_padding(const core::HexMesh& mesh, const AnalysisOp
   return plan;
 }
 
+core::MeshData plan_mesh_data(const core::HexMesh& mesh, const SelectivePlan& plan) {
+  const auto faces = core::unique_faces(mesh);
+  core::MeshData d;
+  d.points = mesh.points;
+  core::Field distortion{"distortion", {}}, propagated{"propagated", {}}, hard{"hard", {}}, padded{"padded", {}};
+  for (int f = 0; f < faces.num_faces(); ++f) {
+    if (!faces.is_boundary(f) && !plan.selection.facets[f]) continue;
+    d.quads.push_back(faces.faces[f]);
+    distortion.values.push_back(plan.analysis.distortion[f]);
+    propagated.values.push_back(plan.analysis.propagated[f]);
+    hard.values.push_back(plan.analysis.hard[f]);
+    padded.values.push_back(plan.selection.facets[f]);
+  }
+  d.cell_data = {std::move(distortion), std::move(propagated), std::move(hard), std::move(padded)};
+  return d;
+}
+
 core::MeshData padded_mesh_data(const PadResult& result) {
   core::MeshData d = core::to_mesh_data(result.mesh);
   core::Field layer{"padding_layer", {}}, source{"source_hex", {}};

@@ -87,6 +87,11 @@ struct SelectivePlan {
 SelectivePlan plan_selective_padding(const core::HexMesh& mesh, const AnalysisOptions& analysis = {},
                                      const SelectionOptions& selection = {});
 
+//! What selective padding saw and chose, for ParaView (thesis figures 4.9 and 4.10): the
+//! boundary facets and the selected interior facets as quads, with the cell fields
+//! `distortion` (D(f)), `propagated` (after equation 4.8), `hard` (HF) and `padded` (PF).
+core::MeshData plan_mesh_data(const core::HexMesh& mesh, const SelectivePlan& plan);
+
 //! The padded mesh as mesh data with the cell fields `padding_layer`, `source_hex` and, when the
 //! input had labels, `block` (the label of the hex each hex comes from), for ParaView.
 core::MeshData padded_mesh_data(const PadResult& result);
