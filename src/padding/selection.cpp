@@ -225,6 +225,14 @@ Selection select_facets_to_pad(const core::HexMesh& mesh, const std::vector<std:
   if (!(options.lambda >= 0) || !(options.time_limit >= 0))
     throw core::InputError(fmt::format("selection: lambda and the time limit must be >= 0 (got {}, {})",
                                        options.lambda, options.time_limit));
+  if (std::none_of(hard.begin(), hard.end(), [](std::uint8_t h) { return h != 0; })) {
+    // Nothing must be padded: the empty set is valid and costs 0, the least any set costs.
+    Selection none;
+    none.facets.assign(tp.t.num_faces(), 0);
+    none.optimal = true;
+    none.seconds = clock.seconds();
+    return none;
+  }
   const Model m = build_model(mesh, tp, hard, options);
   solve::MilpOptions mo;
   mo.time_limit = options.time_limit;

@@ -75,6 +75,14 @@ TEST(MappingAnalysis, PropagationFillsTheNeighboursAndKeepsTheSource) {
   EXPECT_GT(raised, 0);
 }
 
+TEST(BinaryProblem, AnEmptyHardSetPadsNothing) {
+  const core::HexMesh g = test::hex_grid(3, 3, 3);
+  const padding::Selection s =
+      padding::select_facets_to_pad(g, std::vector<std::uint8_t>(core::unique_faces(g).num_faces(), 0));
+  EXPECT_TRUE(s.optimal);
+  EXPECT_EQ(s.selected, 0);
+}
+
 TEST(BinaryProblem, AWholeFaceIsPaddedAsItIs) {
   const core::HexMesh g = test::hex_grid(3, 3, 3);
   const auto hard = boundary_facets_where(g, [](const Vec3& p) { return p.z() == 3.0; });
