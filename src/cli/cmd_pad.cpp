@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -78,66 +79,48 @@ std::string figures_table(const padding::PadResult& r) {
   return t;
 }
 
-void run_pad(const PadCliOptions& o) {
-  for (const std::string& out : {o.output, o.vtk})
-    if (!out.empty() && !io::is_volume_format(io::format_from_path(out)))
-      throw core::InputError("expected a volume mesh file (.mesh .vtk .msh), got " + out);
-  const core::MeshData d = io::read_mesh(o.input);
-  if (d.hexes.empty()) throw core::InputError(o.input + ": no hexahedra to pad");
-  const core::HexMesh mesh = core::hexes_of(d);
-  const core::TriMesh target = read_target_surface(o.target);
-  std::vector<std::uint8_t> selected;
-  nlohmann::json j;
+//! The facets to pad and how they were chosen (global, a facet file, or selective padding with
+//! its report in j and text).
+struct Choice {
+  std::vector<std::uint8_t> facets;
   std::string how = "global";
-  std::string plan_text;
-  if (o.selective) {
-    const padding::SelectivePlan plan = padding::plan_selective_padding(mesh, o.analysis, o.selection);
-    selected = plan.selection.facets;
-    how = "selective";
-    if (!o.plan_vtk.empty()) {
-      io::write_mesh(o.plan_vtk, padding::plan_mesh_data(mesh, plan));
-      j["plan_vtk"] = o.plan_vtk;
-    }
-    j["analysis"] = {{"threshold", o.analysis.threshold},
-                     {"propagation", o.analysis.propagation},
-                     {"analysed_hexes", plan.analysis.analysed_hexes},
-                     {"distorted_edges", plan.analysis.distorted_edges},
-                     {"hard_facets", plan.analysis.hard_facets},
-                     {"seconds", plan.analysis.seconds}};
-    const auto& sel = plan.selection;
-    j["selection"] = {{"lambda", o.selection.lambda}, {"selected_facets", sel.selected},
-                      {"edge_turns", sel.edge_turns},   {"vertex_turns", sel.vertex_turns},
-                      {"objective", sel.objective},     {"optimal", sel.optimal},
-                      {"gap", sel.gap},                 {"variables", sel.variables},
-                      {"rows", sel.rows},               {"seconds", sel.seconds}};
-    plan_text = fmt::format(
-        "  analysis: {} boundary hexes below SJ {}, {} distorted edges, |HF| = {} ({:.2f} s)\n"
-        "  binary problem: |PF| = {}, {} edge and {} vertex turns, {} ({} variables, {} rows, {:.2f} s)\n",
-        plan.analysis.analysed_hexes, o.analysis.threshold, plan.analysis.distorted_edges, plan.analysis.hard_facets,
-        plan.analysis.seconds, sel.selected, sel.edge_turns, sel.vertex_turns,
-        sel.optimal ? std::string("optimal") : fmt::format("not proven optimal, gap {:.1f}%", 100.0 * sel.gap),
-        sel.variables, sel.rows, sel.seconds);
-    if (sel.selected == 0) {
-      // Nothing is distorted enough to pad: the mesh stays as it is, and nothing is written.
-      j["input"] = o.input;
-      j["added_hexes"] = 0;
-      print_result(j, fmt::format("{}: nothing to pad (no boundary hex below the threshold needs it)\n", o.input) + plan_text);
-      if (!o.report.empty()) io::write_text_atomic(o.report, j.dump(2) + "\n");
-      return;
-    }
-  } else if (!o.facets.empty()) {
-    selected = padding::select_facets(mesh, read_facet_file(o.facets));
-    how = o.facets;
-  } else {
-    selected = padding::boundary_selection(mesh);
-  }
-  padding::PadOptions opt = o.pad;
-  opt.run_optimizer = !o.no_optimize;
-  const padding::PadResult r = padding::pad_hex_mesh(mesh, target, selected, opt);
+  std::string text;
+};
 
-  j["input"] = o.input;
-  j["target"] = o.target;
-  j["padding"] = how;
+Choice choose_selectively(const core::HexMesh& mesh, const PadCliOptions& o, nlohmann::json& j) {
+  const padding::SelectivePlan plan = padding::plan_selective_padding(mesh, o.analysis, o.selection);
+  if (!o.plan_vtk.empty()) {
+    io::write_mesh(o.plan_vtk, padding::plan_mesh_data(mesh, plan));
+    j["plan_vtk"] = o.plan_vtk;
+  }
+  const padding::Analysis& a = plan.analysis;
+  const padding::Selection& sel = plan.selection;
+  j["analysis"] = {{"threshold", o.analysis.threshold}, {"propagation", o.analysis.propagation},
+                   {"analysed_hexes", a.analysed_hexes}, {"distorted_edges", a.distorted_edges},
+                   {"hard_facets", a.hard_facets},       {"seconds", a.seconds}};
+  j["selection"] = {{"lambda", o.selection.lambda}, {"selected_facets", sel.selected},
+                    {"edge_turns", sel.edge_turns},   {"vertex_turns", sel.vertex_turns},
+                    {"objective", sel.objective},     {"optimal", sel.optimal},
+                    {"gap", sel.gap},                 {"variables", sel.variables},
+                    {"rows", sel.rows},               {"seconds", sel.seconds}};
+  Choice c{sel.facets, "selective", ""};
+  c.text = fmt::format(
+      "  analysis: {} boundary hexes below SJ {}, {} distorted edges, |HF| = {} ({:.2f} s)\n"
+      "  binary problem: |PF| = {}, {} edge and {} vertex turns, {} ({} variables, {} rows, {:.2f} s)\n",
+      a.analysed_hexes, o.analysis.threshold, a.distorted_edges, a.hard_facets, a.seconds, sel.selected,
+      sel.edge_turns, sel.vertex_turns,
+      sel.optimal ? std::string("optimal") : fmt::format("not proven optimal, gap {:.1f}%", 100.0 * sel.gap),
+      sel.variables, sel.rows, sel.seconds);
+  return c;
+}
+
+Choice choose_facets(const core::HexMesh& mesh, const PadCliOptions& o, nlohmann::json& j) {
+  if (o.selective) return choose_selectively(mesh, o, j);
+  if (!o.facets.empty()) return {padding::select_facets(mesh, read_facet_file(o.facets)), o.facets, ""};
+  return {padding::boundary_selection(mesh), "global", ""};
+}
+
+void add_result_json(nlohmann::json& j, const padding::PadResult& r) {
   j["selected_facets"] = r.selected_facets;
   j["added_hexes"] = r.added_hexes;
   j["crossing_hexes"] = r.crossing_hexes;
@@ -146,27 +129,58 @@ void run_pad(const PadCliOptions& o) {
   j["hausdorff"] = {{"absolute", r.distance.hausdorff}, {"relative", r.distance.relative}};
   j["check"] = foldover_json(r.check);
   j["seconds"] = {{"insertion", r.insert_seconds}, {"optimization", r.optimization.seconds}, {"total", r.seconds}};
+}
 
-  std::string text = fmt::format("{}: {} facets padded ({}), {} hexes added\n", o.input, r.selected_facets, how,
+std::string result_text(const PadCliOptions& o, const Choice& c, const padding::PadResult& r) {
+  std::string text = fmt::format("{}: {} facets padded ({}), {} hexes added\n", o.input, r.selected_facets, c.how,
                                  r.added_hexes);
-  text += plan_text;
+  text += c.text;
   text += figures_table(r);
   text += fmt::format("  Hausdorff to the target {:.6g} ({:.4f}% of its bounding-box diagonal)\n", r.distance.hausdorff,
                       100.0 * r.distance.relative);
   text += fmt::format("  time: insertion {:.3f} s, optimization {:.2f} s\n", r.insert_seconds, r.optimization.seconds);
   text += fmt::format("  fold-over check: {}\n", r.check.reason());
-  if (r.check.ok() || o.keep_failed) {
-    // Cell fields go where they can be held (VTK); a .mesh file holds the block labels only.
-    const core::MeshData out = padding::padded_mesh_data(r);
-    io::write_mesh(o.output, io::format_from_path(o.output) == io::Format::Vtk ? out : core::to_mesh_data(r.mesh));
-    j["output"] = o.output;
-    text += fmt::format("wrote {}{}\n", o.output, r.check.ok() ? "" : " (failed the fold-over check: --keep-failed)");
-    if (!o.vtk.empty()) {
-      io::write_mesh(o.vtk, out);
-      j["vtk"] = o.vtk;
-      text += fmt::format("wrote {}\n", o.vtk);
-    }
+  return text;
+}
+
+//! Write the padded mesh (and its VTK copy): cell fields go where they can be held (VTK); a
+//! .mesh file holds the block labels only.
+void write_outputs(const PadCliOptions& o, const padding::PadResult& r, nlohmann::json& j, std::string& text) {
+  const core::MeshData out = padding::padded_mesh_data(r);
+  io::write_mesh(o.output, io::format_from_path(o.output) == io::Format::Vtk ? out : core::to_mesh_data(r.mesh));
+  j["output"] = o.output;
+  text += fmt::format("wrote {}{}\n", o.output, r.check.ok() ? "" : " (failed the fold-over check: --keep-failed)");
+  if (o.vtk.empty()) return;
+  io::write_mesh(o.vtk, out);
+  j["vtk"] = o.vtk;
+  text += fmt::format("wrote {}\n", o.vtk);
+}
+
+void run_pad(const PadCliOptions& o) {
+  for (const std::string& out : {o.output, o.vtk})
+    if (!out.empty() && !io::is_volume_format(io::format_from_path(out)))
+      throw core::InputError("expected a volume mesh file (.mesh .vtk .msh), got " + out);
+  const core::MeshData d = io::read_mesh(o.input);
+  if (d.hexes.empty()) throw core::InputError(o.input + ": no hexahedra to pad");
+  const core::HexMesh mesh = core::hexes_of(d);
+  const core::TriMesh target = read_target_surface(o.target);
+  nlohmann::json j = {{"input", o.input}, {"target", o.target}};
+  const Choice choice = choose_facets(mesh, o, j);
+  j["padding"] = choice.how;
+  if (std::none_of(choice.facets.begin(), choice.facets.end(), [](std::uint8_t f) { return f != 0; }) && o.selective) {
+    // Nothing is distorted enough to pad: the mesh stays as it is, and nothing is written.
+    j["added_hexes"] = 0;
+    if (!o.report.empty()) io::write_text_atomic(o.report, j.dump(2) + "\n");
+    print_result(j, fmt::format("{}: nothing to pad (no boundary hex below the threshold needs it)\n", o.input) +
+                        choice.text);
+    return;
   }
+  padding::PadOptions opt = o.pad;
+  opt.run_optimizer = !o.no_optimize;
+  const padding::PadResult r = padding::pad_hex_mesh(mesh, target, choice.facets, opt);
+  add_result_json(j, r);
+  std::string text = result_text(o, choice, r);
+  if (r.check.ok() || o.keep_failed) write_outputs(o, r, j, text);
   if (!o.report.empty()) io::write_text_atomic(o.report, j.dump(2) + "\n");
   print_result(j, text);
   if (!r.check.ok()) throw core::GeometryError("padded mesh fails the fold-over check: " + r.check.reason());

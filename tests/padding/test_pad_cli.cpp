@@ -122,5 +122,36 @@ TEST_F(PadCli, AnInvalidFacetSetIsOneLineExitTwoAndNoOutput) {
   EXPECT_FALSE(fs::exists(dir / "out.mesh"));
 }
 
+TEST_F(PadCli, SelectivePaddingPadsWhereTheMeshIsDistortedAndNothingElsewhere) {
+  {
+    const auto r = test::run_cli("pad " + p("hex.mesh") + " --target " + p("cube.obj") + " -o " + p("none.mesh") +
+                                 " --selective --report " + p("report.json"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("nothing to pad"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(dir / "none.mesh"));
+    EXPECT_EQ(report()["added_hexes"], 0);
+  }
+  // A chamfered edge (its facets meet at 180°): HF along it, PF completes it; the target is the
+  // chamfered mesh's own boundary.
+  core::HexMesh m = test::hex_grid(4, 4, 4, 0.5);
+  for (core::Vec3& q : m.points)
+    if (q.y() == 0.0 && q.z() == 2.0) q = core::Vec3(q.x(), 0.25, 1.75);
+  io::write_mesh(dir / "chamfer.mesh", core::to_mesh_data(m));
+  const auto r = test::run_cli("pad " + p("chamfer.mesh") + " --target " + p("chamfer.mesh") + " -o " + p("out.vtk") +
+                               " --selective --plan-vtk " + p("plan.vtk") + " --report " + p("report.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = report();
+  EXPECT_GE(j["analysis"]["hard_facets"].get<int>(), 8);  // the 8 facets along the chamfer at least
+  EXPECT_TRUE(j["selection"]["optimal"].get<bool>());
+  EXPECT_EQ(j["added_hexes"], j["selection"]["selected_facets"]);
+  EXPECT_LT(j["added_hexes"].get<int>(), 96);  // fewer than global padding
+  EXPECT_TRUE(j["check"]["ok"].get<bool>());
+  const core::MeshData plan = io::read_mesh(dir / "plan.vtk");
+  std::vector<std::string> names;
+  for (const auto& f : plan.cell_data) names.push_back(f.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"distortion", "propagated", "hard", "padded"}));
+  EXPECT_TRUE(quality::scaled_jacobian(core::hexes_of(io::read_mesh(dir / "out.vtk"))).all_positive());
+}
+
 }  // namespace
 }  // namespace polycube
