@@ -86,6 +86,34 @@ void forced_turns(const core::HexMesh& mesh, const Topology& tp, const std::vect
   }
 }
 
+//! Equation 4.6: opposite edges at a vertex (no facet holds both) turn together; a vertex turn
+//! tv_v ≥ |te_i − te_k| for each such pair of edges with a turn variable.
+void add_vertex_turns(const core::HexMesh& mesh, const Topology& tp, const std::vector<std::uint8_t>& vertex_forced,
+                      double lambda, Model& m) {
+  solve::LinearProgram& p = m.program;
+  Variables& v = m.v;
+  const double w_vertex = lambda;
+  v.tv.assign(mesh.points.size(), -1);
+  m.edge_pairs.resize(mesh.points.size());
+  for (int vert = 0; lambda > 0 && vert < mesh.num_points(); ++vert) {
+    if (vertex_forced[vert] || tp.vertex_hexes[vert].size() <= 1) continue;
+    std::vector<int> edges;
+    for (int e : tp.vertex_edges[vert])
+      if (v.te[e] >= 0) edges.push_back(e);
+    for (std::size_t i = 0; i < edges.size(); ++i)
+      for (std::size_t j = i + 1; j < edges.size(); ++j) {
+        bool share = false;
+        for (int f : tp.t.edge_faces[edges[i]])
+          share = share || std::find(tp.t.edge_faces[edges[j]].begin(), tp.t.edge_faces[edges[j]].end(), f) !=
+                               tp.t.edge_faces[edges[j]].end();
+        if (!share) m.edge_pairs[vert].push_back({edges[i], edges[j]});
+      }
+    if (m.edge_pairs[vert].empty()) continue;
+    v.tv[vert] = p.add_variable(w_vertex, 0, 1);
+    for (const auto& [a, b] : m.edge_pairs[vert]) add_xor(p, v.tv[vert], v.te[a], v.te[b], false);
+  }
+}
+
 Model build_model(const core::HexMesh& mesh, const Topology& tp, const std::vector<std::uint8_t>& hard,
                   const SelectionOptions& o) {
   Model m;
@@ -95,7 +123,6 @@ Model build_model(const core::HexMesh& mesh, const Topology& tp, const std::vect
   const double hexes = static_cast<double>(mesh.num_cells());
   const double w_facet = std::pow(hexes, -2.0 / 3.0);
   const double w_edge = o.lambda * std::pow(hexes, -1.0 / 3.0);
-  const double w_vertex = o.lambda;
 
   v.hex.resize(mesh.cells.size());
   for (auto& y : v.hex) y = p.add_variable(0, 0, 1, true);
@@ -159,26 +186,7 @@ Model build_model(const core::HexMesh& mesh, const Topology& tp, const std::vect
     add_xor(p, v.x[f], a, b, exact[f] != 0);
   }
 
-  // Equation 4.6: opposite edges at a vertex (no facet holds both) turn together.
-  v.tv.assign(mesh.points.size(), -1);
-  m.edge_pairs.resize(mesh.points.size());
-  for (int vert = 0; o.lambda > 0 && vert < mesh.num_points(); ++vert) {
-    if (vertex_forced[vert] || tp.vertex_hexes[vert].size() <= 1) continue;
-    std::vector<int> edges;
-    for (int e : tp.vertex_edges[vert])
-      if (v.te[e] >= 0) edges.push_back(e);
-    for (std::size_t i = 0; i < edges.size(); ++i)
-      for (std::size_t j = i + 1; j < edges.size(); ++j) {
-        bool share = false;
-        for (int f : tp.t.edge_faces[edges[i]])
-          share = share || std::find(tp.t.edge_faces[edges[j]].begin(), tp.t.edge_faces[edges[j]].end(), f) !=
-                               tp.t.edge_faces[edges[j]].end();
-        if (!share) m.edge_pairs[vert].push_back({edges[i], edges[j]});
-      }
-    if (m.edge_pairs[vert].empty()) continue;
-    v.tv[vert] = p.add_variable(w_vertex, 0, 1);
-    for (const auto& [a, b] : m.edge_pairs[vert]) add_xor(p, v.tv[vert], v.te[a], v.te[b], false);
-  }
+  add_vertex_turns(mesh, tp, vertex_forced, o.lambda, m);
   return m;
 }
 
