@@ -24,6 +24,7 @@ struct PadCliOptions {
   std::string output;
   std::string vtk;     //!< optional VTK copy with the padding_layer / source_hex / block fields
   std::string plan_vtk;  //!< selective: the analysis and the selection as boundary quads (VTK)
+  std::string analysis_mesh;  //!< selective: analyse this mesh (same hexes) instead of the input
   std::string report;  //!< optional JSON report
   std::string facets;  //!< facet file; empty: global padding
   bool global = false;
@@ -87,8 +88,19 @@ struct Choice {
   std::string text;
 };
 
+//! The mesh the mapping analysis looks at: the input, or --analysis-mesh (e.g. the gridded mesh
+//! before optimization, where the map's distortion is still visible), which must have its hexes.
+core::HexMesh analysed_mesh(const core::HexMesh& mesh, const PadCliOptions& o) {
+  if (o.analysis_mesh.empty()) return mesh;
+  core::HexMesh other = core::hexes_of(io::read_mesh(o.analysis_mesh));
+  if (other.cells != mesh.cells)
+    throw core::InputError(o.analysis_mesh + ": --analysis-mesh must have the same hexes as " + o.input +
+                           " (e.g. the gridded hex.mesh of an optimized hex_optimized.mesh)");
+  return other;
+}
+
 Choice choose_selectively(const core::HexMesh& mesh, const PadCliOptions& o, nlohmann::json& j) {
-  const padding::SelectivePlan plan = padding::plan_selective_padding(mesh, o.analysis, o.selection);
+  const padding::SelectivePlan plan = padding::plan_selective_padding(analysed_mesh(mesh, o), o.analysis, o.selection);
   if (!o.plan_vtk.empty()) {
     io::write_mesh(o.plan_vtk, padding::plan_mesh_data(mesh, plan));
     j["plan_vtk"] = o.plan_vtk;
@@ -210,6 +222,9 @@ void register_pad(CLI::App& app) {
   sub->add_option("--plan-vtk", opts->plan_vtk,
                   "Selective: write the boundary facets (and the padded interior ones) as a VTK quad mesh with the "
                   "cell fields distortion, propagated, hard (HF) and padded (PF)");
+  sub->add_option("--analysis-mesh", opts->analysis_mesh,
+                  "Selective: run the mapping analysis on this mesh instead (same hexes, e.g. the gridded hex.mesh of "
+                  "an optimized mesh: the map's distortion before the optimizer hid part of it)");
   sub->add_option("--lambda", opts->selection.lambda,
                   "Selective: weight of the layer's turns (new singularities) against its hexes")
       ->check(CLI::NonNegativeNumber)
