@@ -154,15 +154,16 @@ void run_run(RunCliOptions o) {
 void register_run(CLI::App& app) {
   auto opts = std::make_shared<RunCliOptions>();
   CLI::App* sub = app.add_subcommand(
-      "run", "The whole chain on a surface or tet mesh: construct -> simplify -> hexmesh (+ quad mesh) -> optimize, "
+      "run", "The whole chain on a surface or tet mesh: construct -> simplify -> hexmesh (+ quad mesh) -> optimize "
+             "(-> pad), "
              "with every intermediate result, report.json and a summary table. A failing stage stops the chain: "
              "exit code 2 when the input file is at fault, 3 when the stage could not reach a valid result (the "
              "reason and the stage on stderr and in report.json; earlier results kept)");
   sub->add_option("input", opts->input, "Closed surface (.obj .off .stl .ply .mesh) or tet mesh (.mesh .vtk .msh)")
       ->required();
   sub->add_option("-o,--output", opts->output_dir,
-                  "Output folder: construct/ and simplify/ maps, hex.mesh, hex_optimized.mesh, hex_quality.vtk, "
-                  "quad.vtk, report.json")
+                  "Output folder: construct/ and simplify/ maps, hex.mesh, hex_optimized.mesh, hex_padded.mesh and "
+                  "hex_padded.vtk (when padded), hex_quality.vtk, quad.vtk, report.json")
       ->required();
   sub->add_option("--hexes", opts->run.target_hexes,
                   "About this many hexes in the hex mesh (when the polycube's lattice at that size would be too "
