@@ -900,4 +900,18 @@ template SurfaceReport analyze_surface(const QuadMesh&);
 template bool orient_consistently(TriMesh&);
 template bool orient_consistently(QuadMesh&);
 
+Adjacency adjacency_from_pairs(int entries, std::vector<std::pair<int, int>> pairs) {
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  Adjacency a;
+  a.offsets.assign(static_cast<std::size_t>(entries) + 1, 0);
+  a.items.reserve(pairs.size());
+  for (const auto& [e, i] : pairs) {
+    ++a.offsets[static_cast<std::size_t>(e) + 1];
+    a.items.push_back(i);
+  }
+  for (int e = 0; e < entries; ++e) a.offsets[e + 1] += a.offsets[e];
+  return a;
+}
+
 }  // namespace polycube::core

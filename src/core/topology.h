@@ -18,6 +18,7 @@
 
 #include <array>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace polycube::core {
@@ -156,6 +157,10 @@ struct Adjacency {
   //! Number of items of entry i.
   [[nodiscard]] int degree(int i) const { return offsets[i + 1] - offsets[i]; }
 };
+
+//! Adjacency from (entry, item) pairs: `entries` entries, each with its items sorted and each
+//! item once.
+Adjacency adjacency_from_pairs(int entries, std::vector<std::pair<int, int>> pairs);
 
 //! Vertex -> incident cells (#V entries, cells sorted, each cell once).
 //! \throw InputError on out-of-range indices

@@ -1,28 +1,12 @@
 #include "padding/padding_topology.h"
 
 #include "core/elements.h"
+#include "core/topology.h"
 
 #include <algorithm>
 #include <map>
 
 namespace polycube::padding::detail {
-
-namespace {
-
-core::Adjacency csr(int entries, std::vector<std::pair<int, int>> pairs) {
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  core::Adjacency a;
-  a.offsets.assign(static_cast<std::size_t>(entries) + 1, 0);
-  for (const auto& [e, i] : pairs) {
-    ++a.offsets[static_cast<std::size_t>(e) + 1];
-    a.items.push_back(i);
-  }
-  for (int e = 0; e < entries; ++e) a.offsets[e + 1] += a.offsets[e];
-  return a;
-}
-
-}  // namespace
 
 Topology build_topology(const core::HexMesh& mesh) {
   Topology tp;
@@ -38,9 +22,9 @@ Topology build_topology(const core::HexMesh& mesh) {
     for (int v : tp.t.edges.edges[e]) ve.emplace_back(v, e);
   for (int h = 0; h < tp.num_hexes; ++h)
     for (int v : mesh.cells[h]) vh.emplace_back(v, h);
-  tp.vertex_faces = csr(nv, std::move(vf));
-  tp.vertex_edges = csr(nv, std::move(ve));
-  tp.vertex_hexes = csr(nv, std::move(vh));
+  tp.vertex_faces = core::adjacency_from_pairs(nv, std::move(vf));
+  tp.vertex_edges = core::adjacency_from_pairs(nv, std::move(ve));
+  tp.vertex_hexes = core::adjacency_from_pairs(nv, std::move(vh));
   tp.edge_boundary.assign(ne, {-1, -1});
   for (int e = 0; e < ne; ++e) {
     int k = 0;

@@ -24,19 +24,6 @@ constexpr std::array<std::array<int, 4>, 6> make_hex_face_edges() {
 }
 constexpr auto kHexFaceEdges = make_hex_face_edges();
 
-//! CSR from (entry, item) pairs; items of each entry sorted.
-core::Adjacency build_csr(int entries, std::vector<std::pair<int, int>> pairs) {
-  std::sort(pairs.begin(), pairs.end());
-  core::Adjacency a;
-  a.offsets.assign(static_cast<std::size_t>(entries) + 1, 0);
-  a.items.reserve(pairs.size());
-  for (const auto& [e, i] : pairs) {
-    ++a.offsets[static_cast<std::size_t>(e) + 1];
-    a.items.push_back(i);
-  }
-  for (int e = 0; e < entries; ++e) a.offsets[e + 1] += a.offsets[e];
-  return a;
-}
 
 }  // namespace
 
@@ -62,7 +49,7 @@ HexTopology hex_topology(const core::HexMesh& mesh) {
       if (t.faces.is_boundary(f)) t.edge_on_boundary[e] = 1;
     }
   }
-  t.edge_faces = build_csr(ne, std::move(pairs));
+  t.edge_faces = core::adjacency_from_pairs(ne, std::move(pairs));
   return t;
 }
 
@@ -87,7 +74,7 @@ QuadTopology quad_topology(const core::QuadMesh& mesh) {
       t.vertex_on_boundary[ab[1]] = 1;
     }
   }
-  t.vertex_edges = build_csr(nv, std::move(pairs));
+  t.vertex_edges = core::adjacency_from_pairs(nv, std::move(pairs));
 
   t.vertex_quads.assign(nv, 0);
   for (const auto& q : mesh.cells) {
