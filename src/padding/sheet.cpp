@@ -25,13 +25,15 @@ using detail::build_topology;
 using detail::cells_around;
 
 //! The input must be a hex mesh whose boundary is a closed 2-manifold (the ghosts need it).
-void require_closed_manifold(const core::HexMesh& mesh) {
-  const core::VolumeReport r = core::analyze_volume(mesh);
+//! \return the input's report, which verify() compares the result with
+core::VolumeReport require_closed_manifold(const core::HexMesh& mesh) {
+  core::VolumeReport r = core::analyze_volume(mesh);
   if (r.nonmanifold_faces > 0 || !r.boundary.closed || !r.boundary.manifold)
     throw core::InputError(fmt::format(
         "padding needs a hex mesh whose boundary is a closed 2-manifold ({} non-manifold faces, {} open and {} "
         "non-manifold boundary edges, {} non-manifold boundary vertices); repair or regrid the mesh first",
         r.nonmanifold_faces, r.boundary.boundary_edges, r.boundary.nonmanifold_edges, r.boundary.nonmanifold_vertices));
+  return r;
 }
 
 int selected_around(const Topology& tp, const std::vector<std::uint8_t>& sel, int e) {
@@ -319,7 +321,7 @@ SheetResult build_mesh(const core::HexMesh& mesh, const Topology& tp, const std:
 //! The result is a valid hex mesh with the input's topology, or nothing is returned: every hex
 //! has 8 distinct vertices and no two hexes the same, every face is shared by at most two hexes,
 //! the boundary is a closed 2-manifold with the input's Euler characteristic.
-void verify(const core::HexMesh& input, const core::HexMesh& out) {
+void verify(const core::HexMesh& out, const core::VolumeReport& before) {
   std::vector<core::Hex> sorted = out.cells;
   for (core::Hex& h : sorted) {
     std::sort(h.begin(), h.end());
@@ -329,7 +331,6 @@ void verify(const core::HexMesh& input, const core::HexMesh& out) {
   std::sort(sorted.begin(), sorted.end());
   if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
     throw core::GeometryError("padding produced two hexes on the same vertices; the facet set cannot be inflated");
-  const core::VolumeReport before = core::analyze_volume(input);
   const core::VolumeReport after = core::analyze_volume(out);
   if (after.nonmanifold_faces > 0 || !after.boundary.closed || !after.boundary.manifold ||
       after.boundary.euler_characteristic != before.boundary.euler_characteristic ||
@@ -342,8 +343,7 @@ void verify(const core::HexMesh& input, const core::HexMesh& out) {
         before.boundary.euler_characteristic));
 }
 
-void require_size(const core::HexMesh& mesh, const Topology& tp, const std::vector<std::uint8_t>& sel) {
-  (void)mesh;
+void require_size(const Topology& tp, const std::vector<std::uint8_t>& sel) {
   if (static_cast<int>(sel.size()) != tp.t.num_faces())
     throw core::InputError(
         fmt::format("facet selection has {} flags for a mesh of {} facets", sel.size(), tp.t.num_faces()));
@@ -353,7 +353,7 @@ void require_size(const core::HexMesh& mesh, const Topology& tp, const std::vect
 
 SelectionCheck check_selection(const core::HexMesh& mesh, const std::vector<std::uint8_t>& selected) {
   const Topology tp = build_topology(mesh);
-  require_size(mesh, tp, selected);
+  require_size(tp, selected);
   return check_rules(mesh, tp, selected);
 }
 
@@ -362,9 +362,9 @@ SheetResult insert_sheet(const core::HexMesh& mesh, const std::vector<std::uint8
   const core::Stopwatch clock;
   if (!(options.offset > 0.0 && options.offset < 1.0))
     throw core::InputError(fmt::format("padding offset must be in (0, 1), got {}", options.offset));
-  require_closed_manifold(mesh);
+  const core::VolumeReport input = require_closed_manifold(mesh);
   const Topology tp = build_topology(mesh);
-  require_size(mesh, tp, selected);
+  require_size(tp, selected);
   if (std::none_of(selected.begin(), selected.end(), [](std::uint8_t s) { return s != 0; }))
     throw core::InputError("no facet is selected for padding");
   const SelectionCheck check = check_rules(mesh, tp, selected);
@@ -373,7 +373,7 @@ SheetResult insert_sheet(const core::HexMesh& mesh, const std::vector<std::uint8
                                        check.bad_edges, check.bad_edges == 1 ? "" : "s", check.first));
   const Copies copies = make_copies(mesh, tp, selected, options);
   SheetResult r = build_mesh(mesh, tp, selected, copies);
-  verify(mesh, r.mesh);
+  verify(r.mesh, input);
   r.seconds = clock.seconds();
   return r;
 }
