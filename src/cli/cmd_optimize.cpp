@@ -176,6 +176,11 @@ void register_optimize(CLI::App& app) {
                   "attracted with this weight (--face-attraction) and keep that if closer (0: no fit retry)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  sub->add_option("--centre-weight", oo.centre_weight,
+                  "Weight of each hex's centre Jacobian (Verdict's ninth point) in the energy, relative to a corner's; "
+                  "its barrier keeps hexes from twisting around a negative centre (0: corners only)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   sub->add_flag("--no-features", opts->no_features, "Do not preserve sharp features (surface attraction only)");
   sub->add_flag("--keep-failed", opts->keep_failed,
                 "Write the result even when it fails the fold-over check (the exit code is still 3)");

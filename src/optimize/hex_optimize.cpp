@@ -7,6 +7,7 @@
 #include "core/log.h"
 #include "core/topology.h"
 #include "optimize/boundary_lift.h"
+#include "optimize/centre_frames.h"
 #include "optimize/face_attraction.h"
 #include "optimize/features.h"
 #include "optimize/vertex_roles.h"
@@ -80,12 +81,10 @@ solve::TetElements corner_elements(const core::HexMesh& m, const std::vector<std
   return el;
 }
 
-//! Reference edge lengths of every hex corner (8 per hex, in kHexCornerNeighbors order): the
-//! input's, scaled per hex by (L / size)^uniformity with L such that sum (L^u size^(1-u))^3 =
-//! sum size^3 (the total reference volume stays the input's).
-std::vector<std::array<double, 3>> corner_lengths(const core::HexMesh& m, const std::vector<double>& size,
-                                                  double uniformity) {
-  std::vector<double> scale(m.cells.size(), 1.0);
+//! Per-hex factor (L / size)^uniformity of the reference lengths, with L such that
+//! sum (L^u size^(1-u))^3 = sum size^3 (the total reference volume stays the input's).
+std::vector<double> reference_scale(const std::vector<double>& size, double uniformity) {
+  std::vector<double> scale(size.size(), 1.0);
   if (uniformity > 0) {
     double volume = 0, blended = 0;
     for (double h : size) {
@@ -95,6 +94,13 @@ std::vector<std::array<double, 3>> corner_lengths(const core::HexMesh& m, const 
     const double L = std::pow(volume / blended, 1.0 / (3.0 * uniformity));
     for (std::size_t c = 0; c < size.size(); ++c) scale[c] = std::pow(L / size[c], uniformity);
   }
+  return scale;
+}
+
+//! Reference edge lengths of every hex corner (8 per hex, in kHexCornerNeighbors order): the
+//! input's, times the hex's reference scale.
+std::vector<std::array<double, 3>> corner_lengths(const core::HexMesh& m, const std::vector<double>& size,
+                                                  const std::vector<double>& scale) {
   std::vector<std::array<double, 3>> out(m.cells.size() * 8);
   for (std::size_t c = 0; c < m.cells.size(); ++c)
     for (int i = 0; i < 8; ++i)
@@ -105,8 +111,15 @@ std::vector<std::array<double, 3>> corner_lengths(const core::HexMesh& m, const 
   return out;
 }
 
-int inverted_corners(const core::HexMesh& m, const core::Hex& h) {
-  int n = 0;
+std::vector<int> all_hexes(const core::HexMesh& m) {
+  std::vector<int> all(m.cells.size());
+  for (std::size_t c = 0; c < all.size(); ++c) all[c] = static_cast<int>(c);
+  return all;
+}
+
+//! Corner and centre Jacobians of a hex that are not positive (the centre as Verdict's).
+int inverted_jacobians(const core::HexMesh& m, const core::Hex& h) {
+  int n = !(centre_value(m, h) > 0);
   for (int i = 0; i < 8; ++i) {
     const auto& nb = core::kHexCornerNeighbors[i];
     const Vec3& p = m.points[h[i]];
@@ -115,9 +128,9 @@ int inverted_corners(const core::HexMesh& m, const core::Hex& h) {
   return n;
 }
 
-int inverted_corners(const core::HexMesh& m) {
+int inverted_jacobians(const core::HexMesh& m) {
   int n = 0;
-  for (const auto& h : m.cells) n += inverted_corners(m, h);
+  for (const auto& h : m.cells) n += inverted_jacobians(m, h);
   return n;
 }
 
@@ -145,7 +158,7 @@ struct Problem {
     project(solve::flatten(mesh.points), attr);
     const std::vector<Vec3> old = mesh.points;
     std::vector<int> bad_before(mesh.cells.size());
-    for (std::size_t c = 0; c < mesh.cells.size(); ++c) bad_before[c] = inverted_corners(mesh, mesh.cells[c]);
+    for (std::size_t c = 0; c < mesh.cells.size(); ++c) bad_before[c] = inverted_jacobians(mesh, mesh.cells[c]);
     std::vector<char> moved(mesh.points.size(), 0);
     for (const auto& a : attr) {
       mesh.points[a.vertex] = a.target;
@@ -156,7 +169,7 @@ struct Problem {
       bool changed = false;
       for (std::size_t c = 0; c < mesh.cells.size(); ++c) {
         const auto& h = mesh.cells[c];
-        if (inverted_corners(mesh, h) <= bad_before[c]) {
+        if (inverted_jacobians(mesh, h) <= bad_before[c]) {
           std::array<Vec3, 8> p;
           bool touched = false;
           for (int i = 0; i < 8; ++i) {
@@ -245,17 +258,39 @@ Eigen::VectorXd variables_of(const Problem& pb, const core::HexMesh& mesh) {
   return y;
 }
 
+//! What every optimization of the mesh shares: the problem and the references of the corners
+//! and centres.
+struct Optimization {
+  core::HexMesh& mesh;
+  const core::TriMesh& target_mesh;
+  Problem& pb;
+  const std::vector<double>& size;                    //!< #H input mean edge length of each hex
+  const std::vector<std::array<double, 3>>& lengths;  //!< #H*8 by 3 reference edge lengths of the corners
+  const std::vector<std::array<double, 3>>& centre;   //!< #H by 3 reference lengths of the centre tets
+  //! #H weight factors of the hexes: 1 while untangling, raised on the worst hexes by the
+  //! quality rounds (the retries keep the last round's).
+  std::vector<double> multiplier;
+  const OptimizeOptions& o;
+
+  [[nodiscard]] solve::TetElements elements() const { return corner_elements(mesh, lengths, multiplier); }
+  //! The boundary's Hausdorff distance to the target, relative to its bounding-box diagonal.
+  [[nodiscard]] double hausdorff() const { return quality::hausdorff_distance(mesh, target_mesh).relative; }
+};
+
 //! Optimize the mesh's points from their current positions. With o.boundary_barrier > 0 the
 //! boundary quad corners are lifted (boundary_lift.h): all of them while untangling, only those
 //! facing the target's side now during quality rounds (so the barrier never turns an
 //! optimization into an untangling).
-solve::UntangleResult run(const Problem& pb, solve::TetElements el, core::HexMesh& mesh, solve::UntangleOptions uo,
-                          const OptimizeOptions& o, bool untangling, double face_weight) {
+solve::UntangleResult run(const Optimization& w, solve::UntangleOptions uo, bool untangling, double face_weight) {
+  const Problem& pb = w.pb;
+  const OptimizeOptions& o = w.o;
+  core::HexMesh& mesh = w.mesh;
+  solve::TetElements el = w.elements();
   solve::LinearReduction reduction = pb.reduction;
   if (o.boundary_barrier > 0) {
     const BoundaryLift lift = lift_boundary(mesh, *pb.target, pb.roles.edge_length, o.boundary_barrier, !untangling);
     append(el, lift.elements);
-    reduction = with_apexes(pb.reduction, lift);
+    reduction = with_apexes(reduction, lift);
   }
   uo.attractions = pb.attractions;
   if (face_weight > 0) {
@@ -265,13 +300,15 @@ solve::UntangleResult run(const Problem& pb, solve::TetElements el, core::HexMes
     std::vector<solve::Attraction> centres(quads.size());
     for (std::size_t k = 0; k < quads.size(); ++k) {
       centres[k].vertex = base + static_cast<int>(k);
-      double w = 0;
-      for (int v : quads[k]) w += 0.25 * pb.vertex_weight[v];
-      centres[k].weight = face_weight * w;
+      double weight = 0;
+      for (int v : quads[k]) weight += 0.25 * pb.vertex_weight[v];
+      centres[k].weight = face_weight * weight;
     }
     pb.project(reduction.apply(variables_of(pb, mesh)), centres);
     uo.attractions.insert(uo.attractions.end(), centres.begin(), centres.end());
   }
+  // Last, so that the apexes and quad centres keep the point numbers their elements use.
+  reduction = with_centre_tets(reduction, mesh, all_hexes(mesh), w.centre, w.multiplier, o.centre_weight, el);
   if (pb.reduction.num_variables() > o.cholesky_max_variables) {
     uo.linear_solver = solve::NewtonSolver::ConjugateGradient;
     uo.cg_iterations = o.cg_iterations;
@@ -283,7 +320,7 @@ solve::UntangleResult run(const Problem& pb, solve::TetElements el, core::HexMes
   Eigen::VectorXd y = variables_of(pb, mesh);
   const solve::UntangleResult r = solve::untangle(el, reduction, y, uo);
   std::vector<Vec3> points = solve::unflatten(reduction.apply(y));
-  points.resize(mesh.points.size());  // drop the apexes
+  points.resize(mesh.points.size());  // drop the derived points
   mesh.points = std::move(points);
   return r;
 }
@@ -300,33 +337,16 @@ void check_input(const core::HexMesh& mesh, const OptimizeOptions& o) {
   if (!(o.surface_weight >= 0) || o.untangle_iterations < 0 || o.quality_rounds < 0 || o.quality_iterations < 1 ||
       !(o.volume_weight > 0) || !(o.feature_angle > 0 && o.feature_angle < 180) || !(o.feature_distance > 0) ||
       !(o.drift_diagonal > 0) || !(o.hausdorff_bound > 0) || o.drift_retries < 0 || !(o.size_uniformity >= 0 && o.size_uniformity <= 1) || !(o.face_attraction >= 0) ||
-      !(o.fit_retry >= 0))
+      !(o.fit_retry >= 0) || !(o.centre_weight >= 0))
     throw core::InputError("optimize: option out of range");
   core::check_indices(mesh);
   for (const Vec3& p : mesh.points)
     if (!p.allFinite()) throw core::InputError("hex mesh: non-finite coordinate");
 }
 
-//! What every optimization of the mesh shares: the problem and the references of the corners.
-struct Optimization {
-  core::HexMesh& mesh;
-  const core::TriMesh& target_mesh;
-  Problem& pb;
-  const std::vector<double>& size;                    //!< #H input mean edge length of each hex
-  const std::vector<std::array<double, 3>>& lengths;  //!< #H*8 by 3 reference edge lengths of the corners
-  //! #H weight factors of the hexes: 1 while untangling, raised on the worst hexes by the
-  //! quality rounds (the retries keep the last round's).
-  std::vector<double> multiplier;
-  const OptimizeOptions& o;
-
-  [[nodiscard]] solve::TetElements elements() const { return corner_elements(mesh, lengths, multiplier); }
-  //! The boundary's Hausdorff distance to the target, relative to its bounding-box diagonal.
-  [[nodiscard]] double hausdorff() const { return quality::hausdorff_distance(mesh, target_mesh).relative; }
-};
-
 //! Phase 1: untangle (corners fixed at the target may have folded elements too).
 void untangle_phase(const Optimization& w, PhaseReport& report) {
-  if (inverted_corners(w.mesh) > 0 && w.o.untangle_iterations > 0) {
+  if (inverted_jacobians(w.mesh) > 0 && w.o.untangle_iterations > 0) {
     solve::UntangleOptions uo;
     uo.max_iterations = w.o.untangle_iterations;
     uo.newton_steps = 2;
@@ -334,9 +354,9 @@ void untangle_phase(const Optimization& w, PhaseReport& report) {
     uo.initial_epsilon = 1.0;
     uo.stop_when_untangled = true;
     uo.stall_iterations = 30;
-    const solve::UntangleResult r = run(w.pb, w.elements(), w.mesh, uo, w.o, true, w.o.face_attraction);
+    const solve::UntangleResult r = run(w, uo, true, w.o.face_attraction);
     add(report, r);
-    core::logger().info("optimize: untangling {} iterations, {} -> {} inverted corners", r.iterations,
+    core::logger().info("optimize: untangling {} iterations, {} -> {} inverted elements (corners, centres, boundary lifts)", r.iterations,
                         r.inverted_before, r.inverted_after);
   }
 }
@@ -357,18 +377,18 @@ solve::UntangleOptions quality_options(const OptimizeOptions& o, int iterations)
 //! Where the quality phase starts.
 struct Start {
   std::vector<Vec3> points;
-  int inverted = 0;      //!< inverted corners
+  int inverted = 0;      //!< corner and centre Jacobians <= 0
   double average = 0.0;  //!< a round may not lower the average scaled Jacobian below this
 };
 
 //! The best state of the quality phase so far.
 struct Best {
   quality::ScaledJacobianSummary summary;  //!< with the per-hex values
-  int inverted = 0;                        //!< inverted corners
+  int inverted = 0;                        //!< corner and centre Jacobians <= 0
   std::vector<Vec3> points;
 };
 
-Best best_of(const core::HexMesh& mesh) { return {summary(mesh, true), inverted_corners(mesh), mesh.points}; }
+Best best_of(const core::HexMesh& mesh) { return {summary(mesh, true), inverted_jacobians(mesh), mesh.points}; }
 
 //! Heavier weights on the worst hexes (those within 0.1 of the minimum, at least 1%), so that
 //! the next round raises the minimum.
@@ -388,14 +408,14 @@ void quality_rounds(Optimization& w, const Start& start, double face_weight, Bes
     if (round > 0) weigh_worst_hexes(best.summary, w.multiplier);
     const solve::UntangleOptions uo = quality_options(w.o, w.o.quality_iterations);
     w.mesh.points = best.points;
-    const solve::UntangleResult r = run(w.pb, w.elements(), w.mesh, uo, w.o, false, face_weight);
+    const solve::UntangleResult r = run(w, uo, false, face_weight);
     add(res.quality, r);
     const quality::ScaledJacobianSummary s = summary(w.mesh, true);
-    const int inv = inverted_corners(w.mesh);
+    const int inv = inverted_jacobians(w.mesh);
     const bool better = inv < best.inverted ||
                         (inv == best.inverted && inv > 0 && s.min > best.summary.min) ||
                         (inv == 0 && best.inverted == 0 && s.min > best.summary.min && s.average >= start.average);
-    core::logger().info("optimize: quality round {}: {} iterations, mSJ {:.4f} aSJ {:.4f} inverted corners {}{}",
+    core::logger().info("optimize: quality round {}: {} iterations, mSJ {:.4f} aSJ {:.4f} inverted Jacobians {}{}",
                         round, r.iterations, s.min, s.average, inv, better ? "" : " (not kept)");
     if (better) {
       best.summary = s;
@@ -420,8 +440,8 @@ double drift_retries(Optimization& w, const Start& start, Best& best, OptimizeRe
   core::HexMesh& mesh = w.mesh;
   const double diagonal = core::bounding_box(w.target_mesh.points).extent().norm();
   best.points = mesh.points;
-  double best_hausdorff = o.drift_retries > 0 && res.inverted_corners_before == 0 ? w.hausdorff() : 0.0;
-  for (int retry = 0; retry < o.drift_retries && res.inverted_corners_before == 0; ++retry) {
+  double best_hausdorff = o.drift_retries > 0 && res.inverted_before == 0 ? w.hausdorff() : 0.0;
+  for (int retry = 0; retry < o.drift_retries && res.inverted_before == 0; ++retry) {
     if (best_hausdorff <= o.hausdorff_bound) break;
     const std::vector<double> drift = w.pb.drift_distances(mesh);
     std::vector<std::size_t> off;
@@ -432,9 +452,9 @@ double drift_retries(Optimization& w, const Start& start, Best& best, OptimizeRe
     w.pb.set_weights(mesh, w.size, o.surface_weight);
     mesh.points = start.points;
     const solve::UntangleOptions uo = quality_options(o, o.quality_iterations * std::max(1, o.quality_rounds));
-    const solve::UntangleResult r = run(w.pb, w.elements(), mesh, uo, o, false, o.face_attraction);
+    const solve::UntangleResult r = run(w, uo, false, o.face_attraction);
     add(res.quality, r);
-    if (inverted_corners(mesh) > 0) {  // never trade validity for the surface
+    if (inverted_jacobians(mesh) > 0) {  // never trade validity for the surface
       mesh.points = best.points;
       break;
     }
@@ -465,7 +485,7 @@ double drift_retries(Optimization& w, const Start& start, Best& best, OptimizeRe
 void fit_retry(Optimization& w, const Start& start, double best_hausdorff, Best& best, OptimizeResult& res) {
   const OptimizeOptions& o = w.o;
   core::HexMesh& mesh = w.mesh;
-  if (!(o.fit_retry > 0 && o.face_attraction <= 0 && start.inverted == 0 && inverted_corners(mesh) == 0)) return;
+  if (!(o.fit_retry > 0 && o.face_attraction <= 0 && start.inverted == 0 && inverted_jacobians(mesh) == 0)) return;
   if (best_hausdorff <= 0) best_hausdorff = w.hausdorff();
   if (best_hausdorff <= o.hausdorff_bound) return;
   const Best kept{best.summary, best.inverted, mesh.points};
@@ -493,7 +513,7 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
 
   OptimizeResult res;
   res.before = summary(mesh, false);
-  res.inverted_corners_before = inverted_corners(mesh);
+  res.inverted_before = inverted_jacobians(mesh);
 
   // Setup: target, features, roles, reduction, attractions.
   SurfaceFeatures features;
@@ -502,12 +522,14 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   res.target_feature_edges = static_cast<int>(target.features().edges.size());
   res.target_corners = static_cast<int>(target.features().corners.size());
   const std::vector<double> size = hex_sizes(mesh);
-  const std::vector<std::array<double, 3>> lengths = corner_lengths(mesh, size, o.size_uniformity);
+  const std::vector<double> scale = reference_scale(size, o.size_uniformity);
+  const std::vector<std::array<double, 3>> lengths = corner_lengths(mesh, size, scale);
+  const std::vector<std::array<double, 3>> centre = centre_lengths(mesh, size, scale);
   Problem pb = make_problem(mesh, target, size, o);
   res.boundary_vertices = pb.roles.surface + pb.roles.feature;
   res.feature_vertices = pb.roles.feature;
   res.corner_vertices = pb.roles.corners;
-  Optimization w{mesh, target_mesh, pb, size, lengths, std::vector<double>(mesh.cells.size(), 1.0), o};
+  Optimization w{mesh, target_mesh, pb, size, lengths, centre, std::vector<double>(mesh.cells.size(), 1.0), o};
   res.setup.seconds = seconds_since(t0);
   core::logger().info("optimize: {} hexes, {} surface, {} feature, {} corner vertices; target {} sharp edges, {} corners",
                       mesh.num_cells(), pb.roles.surface, pb.roles.feature, pb.roles.corners,
@@ -536,8 +558,8 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   res.quality.seconds = seconds_since(t2);
 
   res.after = summary(mesh, false);
-  res.inverted_corners_after = inverted_corners(mesh);
-  res.untangled = res.inverted_corners_after == 0;
+  res.inverted_after = inverted_jacobians(mesh);
+  res.untangled = res.inverted_after == 0;
   res.seconds = seconds_since(t0);
   return res;
 }

@@ -6,7 +6,9 @@
 //! Every hex contributes its 8 corner tetrahedra (corner + its three neighbours,
 //! core::kHexCornerNeighbors), whose determinants are the corner Jacobians, to the elliptic
 //! energy of solve/untangle.h (Garanzha et al. 2021), each with a right-angled (ideal cube)
-//! corner of the input corner's edge lengths as reference. Boundary vertices are attracted to the target:
+//! corner of the input corner's edge lengths as reference, and its centre tet (centre_frames.h,
+//! lighter), so that the barrier guards all 9 points of Verdict's scaled Jacobian. Boundary
+//! vertices are attracted to the target:
 //! - corner vertices (junctions of the hex boundary's sharp-edge graph near a target corner)
 //!   are fixed at that corner;
 //! - feature vertices (on sharp hex boundary edges near a target feature line) are attracted to
@@ -86,6 +88,9 @@ struct OptimizeOptions {
   //! weight (face_attraction), kept when that lowers the Hausdorff distance; 0: no fit retry.
   //! Curved and creased surfaces gain most (figures in bench/RESULTS.md).
   double fit_retry = 1.0;
+  //! Weight of each hex's centre tet (optimize/centre_frames.h) relative to one of its corner
+  //! tets; 0 turns it off (then a hex may keep positive corners around a negative centre).
+  double centre_weight = 0.1;
 };
 
 //! Work of one phase.
@@ -99,9 +104,9 @@ struct PhaseReport {
 struct OptimizeResult {
   quality::ScaledJacobianSummary before;  //!< scaled Jacobian of the input (no per-hex values)
   quality::ScaledJacobianSummary after;   //!< ... of the result
-  int inverted_corners_before = 0;        //!< corner tets with det <= 0 at the start
-  int inverted_corners_after = 0;         //!< ... at the end
-  bool untangled = false;                 //!< no inverted corner at the end
+  int inverted_before = 0;  //!< corner and centre Jacobians <= 0 at the start (9 per hex)
+  int inverted_after = 0;   //!< ... at the end
+  bool untangled = false;   //!< no corner or centre Jacobian <= 0 at the end
   int boundary_vertices = 0;              //!< attracted to the surface (features included)
   int feature_vertices = 0;               //!< sliding on target feature lines
   int corner_vertices = 0;                //!< fixed at target corners

@@ -50,13 +50,17 @@ TEST(MappingAnalysis, AFlattenedConvexEdgeMakesItsFacetsHard) {
   int hard = 0, with_d = 0;
   for (std::size_t f = 0; f < a.distortion.size(); ++f) {
     with_d += a.distortion[f] > 0 ? 1 : 0;
-    if (a.distortion[f] > 0) EXPECT_NEAR(a.distortion[f], 1.0, 1e-12);
+    if (a.distortion[f] > 0) {
+      EXPECT_NEAR(a.distortion[f], 1.0, 1e-12);
+    }
     hard += a.hard[f];
   }
   EXPECT_EQ(with_d, 6);
   EXPECT_GE(hard, 6);
   for (std::size_t f = 0; f < a.distortion.size(); ++f)
-    if (a.distortion[f] > 0) EXPECT_EQ(a.hard[f], 1);
+    if (a.distortion[f] > 0) {
+      EXPECT_EQ(a.hard[f], 1);
+    }
 }
 
 TEST(MappingAnalysis, PropagationFillsTheNeighboursAndKeepsTheSource) {
@@ -66,7 +70,9 @@ TEST(MappingAnalysis, PropagationFillsTheNeighboursAndKeepsTheSource) {
   const padding::Analysis a = padding::analyze_mapping(m, {.threshold = 0.6, .propagation = 2});
   int raised = 0;
   for (std::size_t f = 0; f < a.distortion.size(); ++f) {
-    if (a.distortion[f] > 0) EXPECT_EQ(a.propagated[f], a.distortion[f]);
+    if (a.distortion[f] > 0) {
+      EXPECT_EQ(a.propagated[f], a.distortion[f]);
+    }
     if (a.distortion[f] == 0 && a.propagated[f] > 0) {
       ++raised;
       EXPECT_LE(a.propagated[f], 1.0);
@@ -134,12 +140,18 @@ TEST(BinaryProblem, ALargerLambdaNeverAddsTurns) {
     previous_turns = s.edge_turns + s.vertex_turns;
     previous_facets = s.selected;
     for (std::size_t f = 0; f < hard.size(); ++f)
-      if (hard[f]) EXPECT_EQ(s.facets[f], 1);
+      if (hard[f]) {
+        EXPECT_EQ(s.facets[f], 1);
+      }
     EXPECT_TRUE(padding::check_selection(g, s.facets).ok());
     const padding::SheetResult r = padding::insert_sheet(g, s.facets);
     EXPECT_EQ(r.added_hexes, s.selected);
-    if (lambda == 0.0) EXPECT_EQ(s.selected, 4 + 12);
-    if (lambda >= 1.0) EXPECT_EQ(s.selected, 36);
+    if (lambda == 0.0) {
+      EXPECT_EQ(s.selected, 4 + 12);
+    }
+    if (lambda >= 1.0) {
+      EXPECT_EQ(s.selected, 36);
+    }
   }
 }
 
