@@ -1,0 +1,92 @@
+//! Benchmark of the box partition (issue 20): for each simplified map given as a directory
+//! holding model.mesh and polycube.mesh (the `simplify/` folder of `polycube run`), the grid of
+//! chart planes, concave edges, boxes of the partition (thesis §6.2) and after merging, and the
+//! time (median of 3). Prints a text table, or JSON with --json.
+//!
+//! usage: bench_partition [--json] DIR ...
+#include "core/log.h"
+#include "core/stopwatch.h"
+#include "fabricate/box_partition.h"
+#include "io/polycube_map_io.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace polycube;
+
+constexpr int kRuns = 3;
+
+struct Row {
+  std::string model;
+  std::array<int, 3> grid{};
+  int inside = 0, concave = 0, regions = 0, boxes = 0, merged = 0;
+  double seconds = 0;  // median
+};
+
+Row run(const std::filesystem::path& dir) {
+  const core::PolycubeMap map = io::read_polycube_map(dir / "model.mesh", dir / "polycube.mesh");
+  Row r;
+  r.model = dir.parent_path().filename().string();
+  std::vector<double> times;
+  for (int i = 0; i < kRuns; ++i) {
+    const core::Stopwatch clock;
+    const fabricate::OccupancyGrid g = fabricate::occupancy_grid(map);
+    fabricate::BoxPartition p = fabricate::partition_boxes(g);
+    const int boxes = static_cast<int>(p.boxes.size());
+    fabricate::merge_boxes(g, p);
+    times.push_back(clock.seconds());
+    r.grid = {g.cells(0), g.cells(1), g.cells(2)};
+    r.inside = static_cast<int>(std::count(g.inside.begin(), g.inside.end(), 1));
+    r.concave = p.concave_edges;
+    r.boxes = boxes;
+    r.merged = static_cast<int>(p.boxes.size());
+    const fabricate::BoxPartition again = fabricate::partition_boxes(g);
+    r.regions = again.cut_regions;
+  }
+  std::sort(times.begin(), times.end());
+  r.seconds = times[kRuns / 2];
+  return r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool json = false;
+  std::vector<std::filesystem::path> dirs;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--json") json = true;
+    else dirs.emplace_back(a);
+  }
+  if (dirs.empty()) {
+    std::cerr << "usage: bench_partition [--json] DIR ... (each with model.mesh and polycube.mesh)\n";
+    return 2;
+  }
+  core::logger().set_level(spdlog::level::err);
+  nlohmann::json out = nlohmann::json::array();
+  if (!json) std::printf("%-28s %12s %7s %8s %8s %6s %7s %9s\n", "model", "grid", "inside", "concave", "regions", "boxes", "merged", "s");
+  for (const auto& d : dirs) {
+    try {
+      const Row r = run(d);
+      if (json) {
+        out.push_back({{"model", r.model}, {"grid", r.grid}, {"inside_cells", r.inside}, {"concave_edges", r.concave},
+                       {"cut_regions", r.regions}, {"boxes", r.boxes}, {"merged", r.merged}, {"seconds", r.seconds}});
+      } else {
+        std::printf("%-28s %4dx%3dx%3d %7d %8d %8d %6d %7d %9.3f\n", r.model.c_str(), r.grid[0], r.grid[1], r.grid[2],
+                    r.inside, r.concave, r.regions, r.boxes, r.merged, r.seconds);
+      }
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s: %s\n", d.string().c_str(), e.what());
+    }
+  }
+  if (json) std::cout << out.dump(2) << "\n";
+  return 0;
+}
