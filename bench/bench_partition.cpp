@@ -63,25 +63,37 @@ int main(int argc, char** argv) {
   std::vector<std::filesystem::path> dirs;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--json") json = true;
-    else dirs.emplace_back(a);
+    if (a == "--json")
+      json = true;
+    else
+      dirs.emplace_back(a);
   }
   if (dirs.empty()) {
-    std::cerr << "usage: bench_partition [--json] DIR ... (each with model.mesh and polycube.mesh)\n";
+    std::cerr
+        << "usage: bench_partition [--json] DIR ... (each with model.mesh and polycube.mesh)\n";
     return 2;
   }
   core::logger().set_level(spdlog::level::err);
   nlohmann::json out = nlohmann::json::array();
-  if (!json) std::printf("%-28s %12s %7s %8s %8s %6s %7s %9s\n", "model", "grid", "inside", "concave", "regions", "boxes", "merged", "s");
+  if (!json)
+    std::printf("%-28s %12s %7s %8s %8s %6s %7s %9s\n", "model", "grid", "inside", "concave",
+                "regions", "boxes", "merged", "s");
   for (const auto& d : dirs) {
     try {
       const Row r = run(d);
       if (json) {
-        out.push_back({{"model", r.model}, {"grid", r.grid}, {"inside_cells", r.inside}, {"concave_edges", r.concave},
-                       {"cut_regions", r.regions}, {"boxes", r.boxes}, {"merged", r.merged}, {"seconds", r.seconds}});
+        out.push_back({{"model", r.model},
+                       {"grid", r.grid},
+                       {"inside_cells", r.inside},
+                       {"concave_edges", r.concave},
+                       {"cut_regions", r.regions},
+                       {"boxes", r.boxes},
+                       {"merged", r.merged},
+                       {"seconds", r.seconds}});
       } else {
-        std::printf("%-28s %4dx%3dx%3d %7d %8d %8d %6d %7d %9.3f\n", r.model.c_str(), r.grid[0], r.grid[1], r.grid[2],
-                    r.inside, r.concave, r.regions, r.boxes, r.merged, r.seconds);
+        std::printf("%-28s %4dx%3dx%3d %7d %8d %8d %6d %7d %9.3f\n", r.model.c_str(), r.grid[0],
+                    r.grid[1], r.grid[2], r.inside, r.concave, r.regions, r.boxes, r.merged,
+                    r.seconds);
       }
     } catch (const std::exception& e) {
       std::fprintf(stderr, "%s: %s\n", d.string().c_str(), e.what());

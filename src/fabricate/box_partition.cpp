@@ -1,6 +1,7 @@
 //! Box partition of a polycube (see box_partition.h).
 #include "fabricate/box_partition.h"
 
+#include "core/disjoint_sets.h"
 #include "core/errors.h"
 #include "mesh/tet_locator.h"
 #include "structure/structure.h"
@@ -18,27 +19,14 @@ namespace {
 
 using Cell = std::array<int, 3>;
 
-//! Union-find with path halving; the representative is the smallest member (deterministic).
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(int n) : parent(static_cast<std::size_t>(n)) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
-
 std::vector<double> cluster(std::vector<double> values, double tolerance) {
   std::sort(values.begin(), values.end());
   std::vector<double> out;
   std::vector<double> group;
   auto flush = [&] {
-    if (!group.empty()) out.push_back(std::accumulate(group.begin(), group.end(), 0.0) / static_cast<double>(group.size()));
+    if (!group.empty())
+      out.push_back(std::accumulate(group.begin(), group.end(), 0.0) /
+                    static_cast<double>(group.size()));
     group.clear();
   };
   for (double v : values) {
@@ -50,7 +38,8 @@ std::vector<double> cluster(std::vector<double> values, double tolerance) {
 }
 
 //! The 4 cells around the grid edge of direction d whose segment index is q[d] and whose
-//! plane indices on the two other axes are q[(d+1)%3], q[(d+2)%3]; in order (−,−), (+,−), (+,+), (−,+).
+//! plane indices on the two other axes are q[(d+1)%3], q[(d+2)%3]; in order (−,−), (+,−), (+,+),
+//! (−,+).
 std::array<Cell, 4> edge_cells(int d, const Cell& q) {
   const int e1 = (d + 1) % 3, e2 = (d + 2) % 3;
   std::array<Cell, 4> c{q, q, q, q};
@@ -94,10 +83,11 @@ int scan_edges(const OccupancyGrid& g) {
           if (k == EdgeKind::NonManifold) {
             Cell p = q;
             throw core::InputError(fmt::format(
-                "box partition: the polycube is not a manifold solid: two of its cells touch along an edge only "
+                "box partition: the polycube is not a manifold solid: two of its cells touch along "
+                "an edge only "
                 "(axis {} at polycube ({:.6g}, {:.6g}, {:.6g})); the sweep cannot cut it",
-                "xyz"[d], g.planes[0][std::min(p[0], g.cells(0))], g.planes[1][std::min(p[1], g.cells(1))],
-                g.planes[2][std::min(p[2], g.cells(2))]));
+                "xyz"[d], g.planes[0][std::min(p[0], g.cells(0))],
+                g.planes[1][std::min(p[1], g.cells(1))], g.planes[2][std::min(p[2], g.cells(2))]));
           }
           concave += k == EdgeKind::Concave ? 1 : 0;
         }
@@ -129,7 +119,7 @@ std::vector<std::vector<std::uint8_t>> cut_faces(const OccupancyGrid& g, int& re
         ++x[a];
         return g.in(x);
       };
-      UnionFind uf(nb * nc);
+      core::DisjointSets uf(static_cast<std::size_t>(nb * nc));
       for (int v = 0; v < nc; ++v)
         for (int u = 0; u < nb; ++u) {
           if (!interior(u, v)) continue;
@@ -190,12 +180,27 @@ std::vector<Box> boxes_of(const OccupancyGrid& g, const std::vector<int>& label,
   for (int l = 0; l < count; ++l)
     if (cells[l] != boxes[l].cells()) {
       const Box& b = boxes[l];
-      throw core::InputError(fmt::format(
-          "box partition: the sweep left a region that is not a box (cells [{}, {}) x [{}, {}) x [{}, {}) hold {} of "
-          "its {}); the polycube may intersect itself",
-          b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2], b.hi[2], cells[l], b.cells()));
+      throw core::InputError(
+          fmt::format("box partition: the sweep left a region that is not a box (cells [{}, {}) x "
+                      "[{}, {}) x [{}, {}) hold {} of "
+                      "its {}); the polycube may intersect itself",
+                      b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2], b.hi[2], cells[l], b.cells()));
     }
   return boxes;
+}
+
+//! Call fn(a, x, y) for every grid face across axis a between two inside cells x and y = x + e_a.
+template <class Fn>
+void for_each_interior_face(const OccupancyGrid& g, Fn fn) {
+  for (int a = 0; a < 3; ++a)
+    for (int k = 0; k < g.cells(2); ++k)
+      for (int j = 0; j < g.cells(1); ++j)
+        for (int i = 0; i < g.cells(0); ++i) {
+          const Cell x{i, j, k};
+          Cell y = x;
+          ++y[a];
+          if (g.in(x) && g.in(y)) fn(a, x, y);
+        }
 }
 
 //! cell_box and contacts from the boxes.
@@ -208,32 +213,26 @@ void index_boxes(const OccupancyGrid& g, BoxPartition& p) {
         for (int i = b.lo[0]; i < b.hi[0]; ++i) p.cell_box[g.index(i, j, k)] = static_cast<int>(id);
   }
   std::map<std::tuple<int, int, int, int>, Contact> contacts;  // (a, b, axis, plane)
-  for (int a = 0; a < 3; ++a)
-    for (int k = 0; k < g.cells(2); ++k)
-      for (int j = 0; j < g.cells(1); ++j)
-        for (int i = 0; i < g.cells(0); ++i) {
-          Cell x{i, j, k}, y = x;
-          ++y[a];
-          if (!g.in(x) || !g.in(y)) continue;
-          const int ba = p.cell_box[g.index(x)], bb = p.cell_box[g.index(y)];
-          if (ba == bb) continue;
-          auto [it, fresh] = contacts.try_emplace({ba, bb, a, y[a]});
-          Contact& c = it->second;
-          if (fresh) {
-            c.boxes = {ba, bb};
-            c.axis = a;
-            c.plane = y[a];
-            c.lo = y;
-            c.hi = y;
-            for (int e = 0; e < 3; ++e)
-              if (e != a) c.hi[e] = y[e] + 1;
-          }
-          for (int e = 0; e < 3; ++e)
-            if (e != a) {
-              c.lo[e] = std::min(c.lo[e], y[e]);
-              c.hi[e] = std::max(c.hi[e], y[e] + 1);
-            }
-        }
+  for_each_interior_face(g, [&](int a, const Cell& x, const Cell& y) {
+    const int ba = p.cell_box[g.index(x)], bb = p.cell_box[g.index(y)];
+    if (ba == bb) return;
+    auto [it, fresh] = contacts.try_emplace({ba, bb, a, y[a]});
+    Contact& c = it->second;
+    if (fresh) {
+      c.boxes = {ba, bb};
+      c.axis = a;
+      c.plane = y[a];
+      c.lo = y;
+      c.hi = y;
+      for (int e = 0; e < 3; ++e)
+        if (e != a) c.hi[e] = y[e] + 1;
+    }
+    for (int e = 0; e < 3; ++e)
+      if (e != a) {
+        c.lo[e] = std::min(c.lo[e], y[e]);
+        c.hi[e] = std::max(c.hi[e], y[e] + 1);
+      }
+  });
   p.contacts.clear();
   for (auto& [key, c] : contacts) p.contacts.push_back(c);
 }
@@ -242,7 +241,8 @@ void index_boxes(const OccupancyGrid& g, BoxPartition& p) {
 bool union_box(const Box& x, const Box& y, Box& out) {
   for (int a = 0; a < 3; ++a) {
     const int b = (a + 1) % 3, c = (a + 2) % 3;
-    if (x.lo[b] != y.lo[b] || x.hi[b] != y.hi[b] || x.lo[c] != y.lo[c] || x.hi[c] != y.hi[c]) continue;
+    if (x.lo[b] != y.lo[b] || x.hi[b] != y.hi[b] || x.lo[c] != y.lo[c] || x.hi[c] != y.hi[c])
+      continue;
     if (x.hi[a] != y.lo[a] && y.hi[a] != x.lo[a]) continue;
     out = x;
     out.lo[a] = std::min(x.lo[a], y.lo[a]);
@@ -274,8 +274,10 @@ OccupancyGrid occupancy_grid(const core::PolycubeMap& map, double tolerance) {
   for (int a = 0; a < 3; ++a) {
     g.planes[a] = cluster(coordinates[a], tolerance);
     if (g.planes[a].size() < 2)
-      throw core::InputError(fmt::format("box partition: the polycube has fewer than two planes across axis {}; "
-                                         "is the map a polycube (run structure on it)?", "xyz"[a]));
+      throw core::InputError(
+          fmt::format("box partition: the polycube has fewer than two planes across axis {}; "
+                      "is the map a polycube (run structure on it)?",
+                      "xyz"[a]));
   }
   const mesh::TetLocator locator(map.tets, map.polycube, tolerance);
   g.inside.assign(static_cast<std::size_t>(g.cells(0)) * g.cells(1) * g.cells(2), 0);
@@ -283,7 +285,8 @@ OccupancyGrid occupancy_grid(const core::PolycubeMap& map, double tolerance) {
     for (int j = 0; j < g.cells(1); ++j)
       for (int i = 0; i < g.cells(0); ++i) {
         const Box cell{{i, j, k}, {i + 1, j + 1, k + 1}};
-        const core::Vec3 centre = 0.5 * (box_corner(g, cell, 0, 0, 0) + box_corner(g, cell, 1, 1, 1));
+        const core::Vec3 centre =
+            0.5 * (box_corner(g, cell, 0, 0, 0) + box_corner(g, cell, 1, 1, 1));
         g.inside[g.index(i, j, k)] = locator.locate(centre).tet >= 0 ? 1 : 0;
       }
   return g;
@@ -295,15 +298,10 @@ BoxPartition partition_boxes(const OccupancyGrid& g) {
   BoxPartition p;
   p.concave_edges = scan_edges(g);
   const auto cut = cut_faces(g, p.cut_regions);
-  UnionFind uf(static_cast<int>(g.inside.size()));
-  for (int a = 0; a < 3; ++a)
-    for (int k = 0; k < g.cells(2); ++k)
-      for (int j = 0; j < g.cells(1); ++j)
-        for (int i = 0; i < g.cells(0); ++i) {
-          Cell x{i, j, k}, y = x;
-          ++y[a];
-          if (g.in(x) && g.in(y) && !cut[a][g.index(x)]) uf.unite(g.index(x), g.index(y));
-        }
+  core::DisjointSets uf(g.inside.size());
+  for_each_interior_face(g, [&](int a, const Cell& x, const Cell& y) {
+    if (!cut[a][g.index(x)]) uf.unite(g.index(x), g.index(y));
+  });
   std::vector<int> label(g.inside.size(), -1);
   std::vector<int> id_of_root(g.inside.size(), -1);
   int count = 0;
@@ -318,7 +316,8 @@ BoxPartition partition_boxes(const OccupancyGrid& g) {
   return p;
 }
 
-void merge_boxes(const OccupancyGrid& g, BoxPartition& p, const std::function<bool(const Box&)>& fits) {
+void merge_boxes(const OccupancyGrid& g, BoxPartition& p,
+                 const std::function<bool(const Box&)>& fits) {
   std::vector<Box> boxes = p.boxes;
   for (;;) {
     double best = -1.0;
@@ -339,7 +338,8 @@ void merge_boxes(const OccupancyGrid& g, BoxPartition& p, const std::function<bo
     boxes[bi] = merged;
     boxes.erase(boxes.begin() + static_cast<std::ptrdiff_t>(bj));
   }
-  std::sort(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) { return g.index(x.lo) < g.index(y.lo); });
+  std::sort(boxes.begin(), boxes.end(),
+            [&](const Box& x, const Box& y) { return g.index(x.lo) < g.index(y.lo); });
   p.boxes = std::move(boxes);
   index_boxes(g, p);
 }

@@ -45,7 +45,7 @@ struct Contact {
   std::array<int, 2> boxes{-1, -1};  //!< box a below the plane, box b above (along axis)
   int axis = 0;                      //!< normal axis of the shared plane
   int plane = 0;                     //!< grid plane index along axis
-  std::array<int, 3> lo{}, hi{};     //!< the rectangle in grid indices (lo[axis] == hi[axis] == plane)
+  std::array<int, 3> lo{}, hi{};  //!< the rectangle in grid indices (lo[axis] == hi[axis] == plane)
 };
 
 //! Boxes covering the polycube's cells exactly once, with their contacts.
@@ -53,8 +53,9 @@ struct BoxPartition {
   std::vector<Box> boxes;
   std::vector<int> cell_box;  //!< per grid cell: its box, -1 outside
   std::vector<Contact> contacts;
-  int concave_edges = 0;      //!< grid edges where the polycube boundary is concave (3 of 4 cells inside)
-  int cut_regions = 0;        //!< plane regions the concave edges cut along
+  int concave_edges =
+      0;                //!< grid edges where the polycube boundary is concave (3 of 4 cells inside)
+  int cut_regions = 0;  //!< plane regions the concave edges cut along
 };
 
 //! The occupancy grid of a polycube map's polycube: planes from its charts (within `tolerance`

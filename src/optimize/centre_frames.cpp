@@ -3,8 +3,8 @@
 
 #include "core/elements.h"
 
-#include <Eigen/Geometry>
 #include <tbb/parallel_for.h>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 
@@ -38,7 +38,8 @@ double corner_min(const core::HexMesh& m, const core::Hex& h) {
   for (int i = 0; i < 8; ++i) {
     const auto& nb = core::kHexCornerNeighbors[i];
     const Vec3& p = m.points[h[i]];
-    v = std::min(v, normalized(m.points[h[nb[0]]] - p, m.points[h[nb[1]]] - p, m.points[h[nb[2]]] - p));
+    v = std::min(
+        v, normalized(m.points[h[nb[0]]] - p, m.points[h[nb[1]]] - p, m.points[h[nb[2]]] - p));
   }
   return v;
 }
@@ -61,7 +62,8 @@ std::vector<int> centre_limited_hexes(const core::HexMesh& mesh) {
   return out;
 }
 
-std::vector<std::array<double, 3>> centre_lengths(const core::HexMesh& mesh, const std::vector<double>& size,
+std::vector<std::array<double, 3>> centre_lengths(const core::HexMesh& mesh,
+                                                  const std::vector<double>& size,
                                                   const std::vector<double>& scale) {
   std::vector<std::array<double, 3>> out(mesh.cells.size());
   for (std::size_t c = 0; c < mesh.cells.size(); ++c) {
@@ -74,12 +76,13 @@ std::vector<std::array<double, 3>> centre_lengths(const core::HexMesh& mesh, con
   return out;
 }
 
-solve::LinearReduction with_centre_tets(const solve::LinearReduction& reduction, const core::HexMesh& mesh,
-                                        const std::vector<int>& hexes,
+solve::LinearReduction with_centre_tets(const solve::LinearReduction& reduction,
+                                        const core::HexMesh& mesh, const std::vector<int>& hexes,
                                         const std::vector<std::array<double, 3>>& lengths,
                                         const std::vector<double>& multiplier, double weight,
                                         solve::TetElements& elements) {
-  // Level 1: the six face centroids of each hex (point base1 + 6k + 2a for minus[a], +1 for plus[a]).
+  // Level 1: the six face centroids of each hex (point base1 + 6k + 2a for minus[a], +1 for
+  // plus[a]).
   const int base1 = reduction.num_points();
   std::vector<solve::DerivedPoint> faces;
   faces.reserve(6 * hexes.size());

@@ -32,7 +32,8 @@ double centre_value(const core::HexMesh& mesh, const core::Hex& h);
 
 //! Reference lengths of every hex's centre tet: |Xi|/4 of the input (the hex size where an axis
 //! has collapsed), times scale[c].
-std::vector<std::array<double, 3>> centre_lengths(const core::HexMesh& mesh, const std::vector<double>& size,
+std::vector<std::array<double, 3>> centre_lengths(const core::HexMesh& mesh,
+                                                  const std::vector<double>& size,
                                                   const std::vector<double>& scale);
 
 //! Centre tets of the given hexes appended to `elements`, their derived points to the reduction.
@@ -40,8 +41,8 @@ std::vector<std::array<double, 3>> centre_lengths(const core::HexMesh& mesh, con
 //! \param multiplier #H weight factors
 //! \param weight     weight of a centre tet relative to a corner tet of the same reference
 //! \return the reduction extended by 8 derived points per hex
-solve::LinearReduction with_centre_tets(const solve::LinearReduction& reduction, const core::HexMesh& mesh,
-                                        const std::vector<int>& hexes,
+solve::LinearReduction with_centre_tets(const solve::LinearReduction& reduction,
+                                        const core::HexMesh& mesh, const std::vector<int>& hexes,
                                         const std::vector<std::array<double, 3>>& lengths,
                                         const std::vector<double>& multiplier, double weight,
                                         solve::TetElements& elements);

@@ -41,7 +41,8 @@ void expect_exact_cover(const OccupancyGrid& g, const fabricate::BoxPartition& p
     for (int k = b.lo[2]; k < b.hi[2]; ++k)
       for (int j = b.lo[1]; j < b.hi[1]; ++j)
         for (int i = b.lo[0]; i < b.hi[0]; ++i) ++hits[g.index(i, j, k)];
-  for (std::size_t c = 0; c < hits.size(); ++c) EXPECT_EQ(hits[c], g.inside[c] ? 1 : 0) << "cell " << c;
+  for (std::size_t c = 0; c < hits.size(); ++c)
+    EXPECT_EQ(hits[c], g.inside[c] ? 1 : 0) << "cell " << c;
 }
 
 TEST(BoxPartition, AnLIsCutByBothPlanesOfItsConcaveEdgeThenMergedIntoTwo) {
@@ -49,7 +50,8 @@ TEST(BoxPartition, AnLIsCutByBothPlanesOfItsConcaveEdgeThenMergedIntoTwo) {
   fabricate::BoxPartition p = fabricate::partition_boxes(g);
   EXPECT_EQ(p.concave_edges, 1);
   EXPECT_EQ(p.cut_regions, 2);
-  EXPECT_EQ(box_set(p), (std::set<std::array<int, 6>>{{0, 0, 0, 1, 1, 1}, {1, 0, 0, 2, 1, 1}, {0, 1, 0, 1, 2, 1}}));
+  EXPECT_EQ(box_set(p), (std::set<std::array<int, 6>>{
+                            {0, 0, 0, 1, 1, 1}, {1, 0, 0, 2, 1, 1}, {0, 1, 0, 1, 2, 1}}));
   EXPECT_EQ(p.contacts.size(), 2u);
   expect_exact_cover(g, p);
   fabricate::merge_boxes(g, p);
@@ -76,10 +78,11 @@ TEST(BoxPartition, ATIsFourBoxesAndTwoAfterMerging) {
 }
 
 TEST(BoxPartition, ACubeWithANotchOnOneEdgeIsElevenBoxesAndFourAfterMerging) {
-  const OccupancyGrid g = unit_grid(3, 3, 3, [](int i, int j, int k) { return !(i == 1 && j == 2 && k == 2); });
+  const OccupancyGrid g =
+      unit_grid(3, 3, 3, [](int i, int j, int k) { return !(i == 1 && j == 2 && k == 2); });
   fabricate::BoxPartition p = fabricate::partition_boxes(g);
-  EXPECT_EQ(p.concave_edges, 5);  // the notch's floor-to-back edge and its four wall edges
-  EXPECT_EQ(p.cut_regions, 4);    // planes x = 1, x = 2, y = 2, z = 2, each across the cube
+  EXPECT_EQ(p.concave_edges, 5);   // the notch's floor-to-back edge and its four wall edges
+  EXPECT_EQ(p.cut_regions, 4);     // planes x = 1, x = 2, y = 2, z = 2, each across the cube
   EXPECT_EQ(p.boxes.size(), 11u);  // 3 x 2 x 2 blocks minus the notch
   expect_exact_cover(g, p);
   fabricate::merge_boxes(g, p);
@@ -105,10 +108,12 @@ TEST(BoxPartition, CellsTouchingAlongAnEdgeOnlyAreRefused) {
     (void)fabricate::partition_boxes(g);
     FAIL() << "no error";
   } catch (const core::InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("touch along an edge only"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("touch along an edge only"), std::string::npos)
+        << e.what();
   }
-  EXPECT_THROW((void)fabricate::partition_boxes(unit_grid(1, 1, 1, [](int, int, int) { return false; })),
-               core::InputError);
+  EXPECT_THROW(
+      (void)fabricate::partition_boxes(unit_grid(1, 1, 1, [](int, int, int) { return false; })),
+      core::InputError);
 }
 
 TEST(BoxPartition, TheGridOfAPolycubeMapHasItsChartPlanesAndCells) {

@@ -16,8 +16,9 @@ using core::Vec3;
 //! A flat hex from an optimized mesh of a thin part: every corner positive, the centre negative.
 core::HexMesh centre_inverted_hex() {
   core::HexMesh m;
-  m.points = {{0.278, 0.358, 0.481}, {0.373, 0.409, 0.476}, {0.371, 0.406, 0.461}, {0.282, 0.377, 0.482},
-              {0.286, 0.347, 0.485}, {0.362, 0.415, 0.469}, {0.362, 0.412, 0.459}, {0.284, 0.353, 0.487}};
+  m.points = {{0.278, 0.358, 0.481}, {0.373, 0.409, 0.476}, {0.371, 0.406, 0.461},
+              {0.282, 0.377, 0.482}, {0.286, 0.347, 0.485}, {0.362, 0.415, 0.469},
+              {0.362, 0.412, 0.459}, {0.284, 0.353, 0.487}};
   m.cells = {{0, 1, 2, 3, 4, 5, 6, 7}};
   return m;
 }
@@ -42,9 +43,10 @@ TEST(CentreFrames, CentreInvertedHexIsFoundAndItsValueIsVerdicts) {
   EXPECT_NEAR(quality::hex_scaled_jacobian(corners(m)).value, centre, 1e-12);
   EXPECT_EQ(optimize::centre_limited_hexes(m), std::vector<int>{0});
   core::HexMesh cube = m;
-  cube.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  cube.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                 {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
   EXPECT_EQ(optimize::centre_limited_hexes(cube), std::vector<int>{0});  // a cube: all 9 are 1
-  cube.points[6] = {1.3, 1.2, 1.1};                                        // corners drop below the centre
+  cube.points[6] = {1.3, 1.2, 1.1};  // corners drop below the centre
   EXPECT_TRUE(optimize::centre_limited_hexes(cube).empty());
 }
 
@@ -83,12 +85,15 @@ TEST(CentreFrames, UntanglingWithTheCentreTetMakesTheHexValid) {
   for (int i = 12; i < 24; ++i) var[i] = n++;
   const solve::LinearReduction r = solve::index_reduction(var, n, solve::flatten(m.points));
   const double h = 0.05;
-  std::vector<Vec3> ref{{0, 0, 0}, {h, 0, 0}, {h, h, 0}, {0, h, 0}, {0, 0, h}, {h, 0, h}, {h, h, h}, {0, h, h}};
+  std::vector<Vec3> ref{{0, 0, 0}, {h, 0, 0}, {h, h, 0}, {0, h, 0},
+                        {0, 0, h}, {h, 0, h}, {h, h, h}, {0, h, h}};
   std::vector<std::array<int, 4>> tets;
   for (int i = 0; i < 8; ++i)
-    tets.push_back({i, core::kHexCornerNeighbors[i][0], core::kHexCornerNeighbors[i][1], core::kHexCornerNeighbors[i][2]});
+    tets.push_back({i, core::kHexCornerNeighbors[i][0], core::kHexCornerNeighbors[i][1],
+                    core::kHexCornerNeighbors[i][2]});
   solve::TetElements el = solve::reference_elements(ref, tets);
-  const solve::LinearReduction ext = optimize::with_centre_tets(r, m, {0}, {{h, h, h}}, {1.0}, 1.0, el);
+  const solve::LinearReduction ext =
+      optimize::with_centre_tets(r, m, {0}, {{h, h, h}}, {1.0}, 1.0, el);
   Eigen::VectorXd y(n);
   for (int i = 12; i < 24; ++i) y[var[i]] = m.points[i / 3][i % 3];
   const solve::UntangleResult res = solve::untangle(el, ext, y, {});
