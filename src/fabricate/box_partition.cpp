@@ -3,6 +3,7 @@
 
 #include "core/disjoint_sets.h"
 #include "core/errors.h"
+#include "mesh/arrangement.h"
 #include "mesh/tet_locator.h"
 #include "structure/structure.h"
 
@@ -10,7 +11,6 @@
 
 #include <algorithm>
 #include <map>
-#include <numeric>
 #include <tuple>
 
 namespace polycube::fabricate {
@@ -19,23 +19,8 @@ namespace {
 
 using Cell = std::array<int, 3>;
 
-std::vector<double> cluster(std::vector<double> values, double tolerance) {
-  std::sort(values.begin(), values.end());
-  std::vector<double> out;
-  std::vector<double> group;
-  auto flush = [&] {
-    if (!group.empty())
-      out.push_back(std::accumulate(group.begin(), group.end(), 0.0) /
-                    static_cast<double>(group.size()));
-    group.clear();
-  };
-  for (double v : values) {
-    if (!group.empty() && v - group.front() > tolerance) flush();
-    group.push_back(v);
-  }
-  flush();
-  return out;
-}
+//! More grid cells than this: not a polycube a person would cut into parts.
+constexpr long long kMaxCells = 10'000'000;
 
 //! The 4 cells around the grid edge of direction d whose segment index is q[d] and whose
 //! plane indices on the two other axes are q[(d+1)%3], q[(d+2)%3]; in order (−,−), (+,−), (+,+),
@@ -268,27 +253,11 @@ core::Vec3 box_corner(const OccupancyGrid& grid, const Box& box, int i, int j, i
 OccupancyGrid occupancy_grid(const core::PolycubeMap& map, double tolerance) {
   if (map.tets.empty()) throw core::InputError("box partition: the map has no tets");
   const structure::PolycubeStructure s = structure::extract_structure(map);
-  std::array<std::vector<double>, 3> coordinates;
-  for (const auto& chart : s.charts) coordinates[chart.axis].push_back(chart.coordinate);
-  OccupancyGrid g;
-  for (int a = 0; a < 3; ++a) {
-    g.planes[a] = cluster(coordinates[a], tolerance);
-    if (g.planes[a].size() < 2)
-      throw core::InputError(
-          fmt::format("box partition: the polycube has fewer than two planes across axis {}; "
-                      "is the map a polycube (run structure on it)?",
-                      "xyz"[a]));
-  }
   const mesh::TetLocator locator(map.tets, map.polycube, tolerance);
-  g.inside.assign(static_cast<std::size_t>(g.cells(0)) * g.cells(1) * g.cells(2), 0);
-  for (int k = 0; k < g.cells(2); ++k)
-    for (int j = 0; j < g.cells(1); ++j)
-      for (int i = 0; i < g.cells(0); ++i) {
-        const Box cell{{i, j, k}, {i + 1, j + 1, k + 1}};
-        const core::Vec3 centre =
-            0.5 * (box_corner(g, cell, 0, 0, 0) + box_corner(g, cell, 1, 1, 1));
-        g.inside[g.index(i, j, k)] = locator.locate(centre).tet >= 0 ? 1 : 0;
-      }
+  const mesh::Arrangement arr = mesh::build_arrangement(s, locator, tolerance, kMaxCells);
+  OccupancyGrid g;
+  g.planes = arr.level;
+  g.inside.assign(arr.inside.begin(), arr.inside.end());
   return g;
 }
 

@@ -5,6 +5,7 @@
 #include "core/log.h"
 #include "core/progress.h"
 #include "core/topology.h"
+#include "mesh/arrangement.h"
 #include "mesh/tet_locator.h"
 #include "structure/structure.h"
 
@@ -38,80 +39,6 @@ constexpr const char* kAxis[3] = {"x", "y", "z"};
 
 std::string fmt_point(const Vec3& p) {
   return fmt::format("({:.6g}, {:.6g}, {:.6g})", p.x(), p.y(), p.z());
-}
-
-// --- levels and the arrangement of the polycube -----------------------------------------------
-
-//! The polycube seen as a union of boxes of the grid of its chart planes ("levels").
-struct Arrangement {
-  std::array<std::vector<double>, 3> level;  //!< distinct chart coordinates per axis, increasing
-  std::vector<int> chart_level;              //!< level index of each chart (along its axis)
-  std::vector<char> inside;                  //!< per box (i fastest, then j, then k)
-  double tolerance = 0.0;                    //!< absolute level tolerance (polycube units)
-
-  [[nodiscard]] int boxes(int a) const { return static_cast<int>(level[a].size()) - 1; }
-  [[nodiscard]] std::size_t box_index(int i, int j, int k) const {
-    return (static_cast<std::size_t>(k) * boxes(1) + j) * boxes(0) + i;
-  }
-  [[nodiscard]] bool is_inside(int i, int j, int k) const {
-    if (i < 0 || j < 0 || k < 0 || i >= boxes(0) || j >= boxes(1) || k >= boxes(2)) return false;
-    return inside[box_index(i, j, k)] != 0;
-  }
-  //! Index of the level nearest to x along axis a.
-  [[nodiscard]] int nearest_level(int a, double x) const {
-    const auto& l = level[a];
-    auto it = std::lower_bound(l.begin(), l.end(), x);
-    if (it == l.end()) return static_cast<int>(l.size()) - 1;
-    if (it == l.begin()) return 0;
-    return (x - *(it - 1) <= *it - x) ? static_cast<int>(it - l.begin()) - 1
-                                      : static_cast<int>(it - l.begin());
-  }
-};
-
-Arrangement build_arrangement(const structure::PolycubeStructure& s, const TetLocator& locator,
-                              double tol, long long max_boxes) {
-  Arrangement arr;
-  arr.tolerance = tol;
-  arr.chart_level.assign(s.charts.size(), -1);
-  for (int a = 0; a < 3; ++a) {
-    // cluster the chart coordinates of this axis: a gap larger than tol starts a new level
-    std::vector<std::pair<double, int>> coords;
-    for (std::size_t c = 0; c < s.charts.size(); ++c)
-      if (s.charts[c].axis == a) coords.emplace_back(s.charts[c].coordinate, static_cast<int>(c));
-    std::sort(coords.begin(), coords.end());
-    for (std::size_t i = 0; i < coords.size();) {
-      std::size_t j = i + 1;
-      while (j < coords.size() && coords[j].first - coords[j - 1].first <= tol) ++j;
-      double sum = 0.0;
-      for (std::size_t k = i; k < j; ++k) {
-        sum += coords[k].first;
-        arr.chart_level[static_cast<std::size_t>(coords[k].second)] =
-            static_cast<int>(arr.level[a].size());
-      }
-      arr.level[a].push_back(sum / static_cast<double>(j - i));
-      i = j;
-    }
-    if (arr.level[a].size() < 2)
-      throw core::InputError(
-          fmt::format("the polycube has {} chart plane(s) along {}: not a closed polycube",
-                      arr.level[a].size(), kAxis[a]));
-  }
-  const long long nbox = static_cast<long long>(arr.boxes(0)) * arr.boxes(1) * arr.boxes(2);
-  if (nbox > max_boxes)
-    throw core::InputError(
-        fmt::format("the polycube has {} x {} x {} distinct chart planes: too many to grid",
-                    arr.level[0].size(), arr.level[1].size(), arr.level[2].size()));
-  // a box of the arrangement is inside when its centre is (no chart crosses a box)
-  arr.inside.assign(static_cast<std::size_t>(nbox), 0);
-  for (int k = 0; k < arr.boxes(2); ++k)
-    for (int j = 0; j < arr.boxes(1); ++j)
-      for (int i = 0; i < arr.boxes(0); ++i) {
-        const Vec3 c(0.5 * (arr.level[0][i] + arr.level[0][i + 1]),
-                     0.5 * (arr.level[1][j] + arr.level[1][j + 1]),
-                     0.5 * (arr.level[2][k] + arr.level[2][k + 1]));
-        arr.inside[arr.box_index(i, j, k)] = locator.locate(c).tet >= 0 ? 1 : 0;
-      }
-  return arr;
 }
 
 //! Rounded levels at scale s: nearest integer, halves away from zero.
