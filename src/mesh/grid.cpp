@@ -748,25 +748,18 @@ std::vector<Vec3> map_lattice_points(const core::PolycubeMap& map, const TetLoca
       q = lat.hexes.points[static_cast<std::size_t>(pid)];
     else
       q = Vec3(space.inverse[0][lp[0]], space.inverse[1][lp[1]], space.inverse[2][lp[2]]);
-    TetLocator::Hit hit = locator->locate(q);
-    if (hit.tet >= 0) {
+    bool located = false;
+    const TetLocator::Hit hit = locate_or_nearest(*locator, q, located);
+    if (located) {
       ++res.points_located;
     } else {
-      hit = locator->nearest(q, 2);
-      if (hit.tet < 0) hit = locator->nearest_brute_force(q);
       ++res.points_failed;
       res.max_failed_distance =
           std::max(res.max_failed_distance, -hit.score / (space.deformed ? space.scale : 1.0));
     }
     if (hit.tet < 0) throw core::GeometryError("gridding: the polycube has no usable tet");
-    // clamp to the tet (points on the boundary may be outside by rounding) and map
-    std::array<double, 4> b = hit.bary;
-    double sum = 0.0;
-    for (double& x : b) sum += (x = std::max(0.0, x));
-    const auto& t = map.tets[static_cast<std::size_t>(hit.tet)];
-    Vec3 p = Vec3::Zero();
-    for (int k = 0; k < 4; ++k) p += (b[k] / sum) * map.model[t[k]];
-    model_pos[static_cast<std::size_t>(pid)] = p;
+    // clamped to the tet (points on the boundary may be outside by rounding) and mapped
+    model_pos[static_cast<std::size_t>(pid)] = map_through(map.tets, map.model, hit);
     if ((++done & 0xFFFF) == 0) task.set(static_cast<std::int64_t>(done));
   }
   task.finish();

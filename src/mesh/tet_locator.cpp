@@ -170,4 +170,25 @@ TetLocator::Hit TetLocator::nearest_brute_force(const Vec3& q) const {
   return best;
 }
 
+TetLocator::Hit locate_or_nearest(const TetLocator& locator, const core::Vec3& q, bool& located) {
+  TetLocator::Hit hit = locator.locate(q);
+  located = hit.tet >= 0;
+  if (!located) {
+    hit = locator.nearest(q, 2);
+    if (hit.tet < 0) hit = locator.nearest_brute_force(q);
+  }
+  return hit;
+}
+
+core::Vec3 map_through(const std::vector<core::Tet>& tets, const std::vector<core::Vec3>& to,
+                       const TetLocator::Hit& hit) {
+  std::array<double, 4> b = hit.bary;
+  double sum = 0.0;
+  for (double& x : b) sum += (x = std::max(0.0, x));
+  const auto& t = tets[static_cast<std::size_t>(hit.tet)];
+  core::Vec3 p = core::Vec3::Zero();
+  for (int k = 0; k < 4; ++k) p += (b[k] / sum) * to[t[k]];
+  return p;
+}
+
 }  // namespace polycube::mesh

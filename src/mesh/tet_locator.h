@@ -67,4 +67,13 @@ class TetLocator {
   double inside_threshold_ = 0.0;  // a score above this means strictly inside: stop searching
 };
 
+//! The tet containing q, else the tet of largest score nearby, else over all tets; sets `located`
+//! to whether q was inside (within the tolerance).
+TetLocator::Hit locate_or_nearest(const TetLocator& locator, const core::Vec3& q, bool& located);
+
+//! The point of `to` with the barycentric coordinates of a hit in tet `tet` (negative
+//! coordinates, from points just outside, clamped to 0 and the rest renormalized).
+core::Vec3 map_through(const std::vector<core::Tet>& tets, const std::vector<core::Vec3>& to,
+                       const TetLocator::Hit& hit);
+
 }  // namespace polycube::mesh

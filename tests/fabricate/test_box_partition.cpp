@@ -2,6 +2,7 @@
 // planes of every concave edge (thesis §6.2), then merging where a union is a box.
 #include "core/errors.h"
 #include "fabricate/box_partition.h"
+#include "fabricate/corners.h"
 
 #include "../support/fixtures.h"
 
@@ -127,6 +128,31 @@ TEST(BoxPartition, TheGridOfAPolycubeMapHasItsChartPlanesAndCells) {
   EXPECT_EQ(g.planes[2], (std::vector<double>{0, 1}));
   EXPECT_EQ(g.inside, (std::vector<std::uint8_t>{1, 1, 1, 0}));
   EXPECT_EQ(fabricate::partition_boxes(g).boxes.size(), 3u);
+}
+
+TEST(BoxCorners, CornersFollowTheMapIntoModelSpace) {
+  // The L of 3 unit hexes; model space is an affine image of polycube space, so every corner
+  // must land exactly on the image of its polycube position.
+  core::HexMesh h = test::hex_grid(2, 2, 1);
+  h.cells.erase(h.cells.begin() + 3);
+  const core::TetMesh t = test::tetrahedralize(h);
+  auto affine = [](const core::Vec3& p) {
+    return core::Vec3(2 * p.x() + 0.5 * p.y() + 1, 3 * p.y() - 2, 0.5 * p.z() + p.x());
+  };
+  std::vector<core::Vec3> model;
+  for (const auto& p : t.points) model.push_back(affine(p));
+  const core::PolycubeMap map{t.cells, model, t.points};
+  const OccupancyGrid g = fabricate::occupancy_grid(map);
+  fabricate::BoxPartition p = fabricate::partition_boxes(g);
+  fabricate::merge_boxes(g, p);
+  const fabricate::BoxCorners c = fabricate::map_corners(map, g, p);
+  ASSERT_EQ(c.model.size(), 8 * p.boxes.size());
+  EXPECT_EQ(c.not_located, 0);
+  for (std::size_t b = 0; b < p.boxes.size(); ++b)
+    for (int k = 0; k < 8; ++k) {
+      const core::Vec3 q = fabricate::box_corner(g, p.boxes[b], k & 1, (k >> 1) & 1, (k >> 2) & 1);
+      EXPECT_LT((c.model[8 * b + k] - affine(q)).norm(), 1e-12) << "box " << b << " corner " << k;
+    }
 }
 
 }  // namespace

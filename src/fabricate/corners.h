@@ -1,0 +1,26 @@
+#pragma once
+//! \file corners.h
+//! \brief Box corners mapped back to model space through the polycube map (thesis §6.2): each
+//! corner is located in a tet of the polycube and takes the same barycentric combination of that
+//! tet's model-space vertices.
+
+#include "core/polycube_map.h"
+#include "fabricate/box_partition.h"
+
+#include <vector>
+
+namespace polycube::fabricate {
+
+//! Model-space corners of every box.
+struct BoxCorners {
+  //! #boxes * 8: corner (i, j, k) of box b (each 0 for lo, 1 for hi) at 8 b + i + 2 j + 4 k
+  std::vector<core::Vec3> model;
+  int not_located = 0;  //!< corners outside every tet, mapped through the nearest one
+};
+
+//! Map the corners of the partition's boxes into model space.
+//! \param tolerance polycube-space distance within which a corner counts as inside a tet
+BoxCorners map_corners(const core::PolycubeMap& map, const OccupancyGrid& grid,
+                       const BoxPartition& partition, double tolerance = 1e-6);
+
+}  // namespace polycube::fabricate
