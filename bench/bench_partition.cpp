@@ -1,12 +1,15 @@
 //! Benchmark of the box partition (issue 20): for each simplified map given as a directory
 //! holding model.mesh and polycube.mesh (the `simplify/` folder of `polycube run`), the grid of
-//! chart planes, concave edges, boxes of the partition (thesis §6.2) and after merging, and the
+//! chart planes, concave edges, boxes of the partition (thesis §6.2) and after merging, the cuts of
+//! the plan (and boxes a pinwheel split), corners not located in a tet, and the
 //! time (median of 3). Prints a text table, or JSON with --json.
 //!
 //! usage: bench_partition [--json] DIR ...
 #include "core/log.h"
 #include "core/stopwatch.h"
 #include "fabricate/box_partition.h"
+#include "fabricate/corners.h"
+#include "fabricate/cut_plan.h"
 #include "io/polycube_map_io.h"
 
 #include <nlohmann/json.hpp>
@@ -27,7 +30,8 @@ constexpr int kRuns = 3;
 struct Row {
   std::string model;
   std::array<int, 3> grid{};
-  int inside = 0, concave = 0, regions = 0, boxes = 0, merged = 0;
+  int inside = 0, concave = 0, regions = 0, boxes = 0, merged = 0, cuts = 0, splits = 0,
+      not_located = 0;
   double seconds = 0;  // median
 };
 
@@ -42,7 +46,12 @@ Row run(const std::filesystem::path& dir) {
     fabricate::BoxPartition p = fabricate::partition_boxes(g);
     const int boxes = static_cast<int>(p.boxes.size());
     fabricate::merge_boxes(g, p);
+    const fabricate::CutPlan plan = fabricate::plan_cuts(g, p);
+    const fabricate::BoxCorners corners = fabricate::map_corners(map, g, plan.partition);
     times.push_back(clock.seconds());
+    r.cuts = static_cast<int>(plan.cuts.size());
+    r.splits = plan.split_boxes;
+    r.not_located = corners.not_located;
     r.grid = {g.cells(0), g.cells(1), g.cells(2)};
     r.inside = static_cast<int>(std::count(g.inside.begin(), g.inside.end(), 1));
     r.concave = p.concave_edges;
@@ -76,8 +85,8 @@ int main(int argc, char** argv) {
   core::logger().set_level(spdlog::level::err);
   nlohmann::json out = nlohmann::json::array();
   if (!json)
-    std::printf("%-28s %12s %7s %8s %8s %6s %7s %9s\n", "model", "grid", "inside", "concave",
-                "regions", "boxes", "merged", "s");
+    std::printf("%-28s %12s %7s %8s %8s %6s %7s %5s %7s %8s %9s\n", "model", "grid", "inside",
+                "concave", "regions", "boxes", "merged", "cuts", "splits", "outside", "s");
   for (const auto& d : dirs) {
     try {
       const Row r = run(d);
@@ -89,11 +98,14 @@ int main(int argc, char** argv) {
                        {"cut_regions", r.regions},
                        {"boxes", r.boxes},
                        {"merged", r.merged},
+                       {"cuts", r.cuts},
+                       {"pinwheel_splits", r.splits},
+                       {"corners_not_located", r.not_located},
                        {"seconds", r.seconds}});
       } else {
-        std::printf("%-28s %4dx%3dx%3d %7d %8d %8d %6d %7d %9.3f\n", r.model.c_str(), r.grid[0],
-                    r.grid[1], r.grid[2], r.inside, r.concave, r.regions, r.boxes, r.merged,
-                    r.seconds);
+        std::printf("%-28s %4dx%3dx%3d %7d %8d %8d %6d %7d %5d %7d %8d %9.3f\n", r.model.c_str(),
+                    r.grid[0], r.grid[1], r.grid[2], r.inside, r.concave, r.regions, r.boxes,
+                    r.merged, r.cuts, r.splits, r.not_located, r.seconds);
       }
     } catch (const std::exception& e) {
       std::fprintf(stderr, "%s: %s\n", d.string().c_str(), e.what());

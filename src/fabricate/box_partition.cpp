@@ -188,40 +188,6 @@ void for_each_interior_face(const OccupancyGrid& g, Fn fn) {
         }
 }
 
-//! cell_box and contacts from the boxes.
-void index_boxes(const OccupancyGrid& g, BoxPartition& p) {
-  p.cell_box.assign(g.inside.size(), -1);
-  for (std::size_t id = 0; id < p.boxes.size(); ++id) {
-    const Box& b = p.boxes[id];
-    for (int k = b.lo[2]; k < b.hi[2]; ++k)
-      for (int j = b.lo[1]; j < b.hi[1]; ++j)
-        for (int i = b.lo[0]; i < b.hi[0]; ++i) p.cell_box[g.index(i, j, k)] = static_cast<int>(id);
-  }
-  std::map<std::tuple<int, int, int, int>, Contact> contacts;  // (a, b, axis, plane)
-  for_each_interior_face(g, [&](int a, const Cell& x, const Cell& y) {
-    const int ba = p.cell_box[g.index(x)], bb = p.cell_box[g.index(y)];
-    if (ba == bb) return;
-    auto [it, fresh] = contacts.try_emplace({ba, bb, a, y[a]});
-    Contact& c = it->second;
-    if (fresh) {
-      c.boxes = {ba, bb};
-      c.axis = a;
-      c.plane = y[a];
-      c.lo = y;
-      c.hi = y;
-      for (int e = 0; e < 3; ++e)
-        if (e != a) c.hi[e] = y[e] + 1;
-    }
-    for (int e = 0; e < 3; ++e)
-      if (e != a) {
-        c.lo[e] = std::min(c.lo[e], y[e]);
-        c.hi[e] = std::max(c.hi[e], y[e] + 1);
-      }
-  });
-  p.contacts.clear();
-  for (auto& [key, c] : contacts) p.contacts.push_back(c);
-}
-
 //! The union of two boxes when it is a box.
 bool union_box(const Box& x, const Box& y, Box& out) {
   for (int a = 0; a < 3; ++a) {
@@ -248,6 +214,48 @@ bool OccupancyGrid::in(std::array<int, 3> c) const {
 core::Vec3 box_corner(const OccupancyGrid& grid, const Box& box, int i, int j, int k) {
   return {grid.planes[0][i ? box.hi[0] : box.lo[0]], grid.planes[1][j ? box.hi[1] : box.lo[1]],
           grid.planes[2][k ? box.hi[2] : box.lo[2]]};
+}
+
+void index_boxes(const OccupancyGrid& g, BoxPartition& p) {
+  p.cell_box.assign(g.inside.size(), -1);
+  for (std::size_t id = 0; id < p.boxes.size(); ++id) {
+    const Box& b = p.boxes[id];
+    for (int k = b.lo[2]; k < b.hi[2]; ++k)
+      for (int j = b.lo[1]; j < b.hi[1]; ++j)
+        for (int i = b.lo[0]; i < b.hi[0]; ++i) {
+          int& owner = p.cell_box[g.index(i, j, k)];
+          if (!g.inside[g.index(i, j, k)] || owner >= 0)
+            throw core::InputError(fmt::format("box partition: box {} {} cell ({}, {}, {})", id,
+                                               owner >= 0 ? "overlaps another at" : "holds the outside", i, j, k));
+          owner = static_cast<int>(id);
+        }
+  }
+  for (std::size_t c = 0; c < g.inside.size(); ++c)
+    if (g.inside[c] && p.cell_box[c] < 0)
+      throw core::InputError(fmt::format("box partition: cell {} inside the polycube is in no box", c));
+  std::map<std::tuple<int, int, int, int>, Contact> contacts;  // (a, b, axis, plane)
+  for_each_interior_face(g, [&](int a, const Cell& x, const Cell& y) {
+    const int ba = p.cell_box[g.index(x)], bb = p.cell_box[g.index(y)];
+    if (ba == bb) return;
+    auto [it, fresh] = contacts.try_emplace({ba, bb, a, y[a]});
+    Contact& c = it->second;
+    if (fresh) {
+      c.boxes = {ba, bb};
+      c.axis = a;
+      c.plane = y[a];
+      c.lo = y;
+      c.hi = y;
+      for (int e = 0; e < 3; ++e)
+        if (e != a) c.hi[e] = y[e] + 1;
+    }
+    for (int e = 0; e < 3; ++e)
+      if (e != a) {
+        c.lo[e] = std::min(c.lo[e], y[e]);
+        c.hi[e] = std::max(c.hi[e], y[e] + 1);
+      }
+  });
+  p.contacts.clear();
+  for (auto& [key, c] : contacts) p.contacts.push_back(c);
 }
 
 OccupancyGrid occupancy_grid(const core::PolycubeMap& map, double tolerance) {

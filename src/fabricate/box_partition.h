@@ -73,6 +73,10 @@ BoxPartition partition_boxes(const OccupancyGrid& grid);
 void merge_boxes(const OccupancyGrid& grid, BoxPartition& partition,
                  const std::function<bool(const Box&)>& fits = nullptr);
 
+//! cell_box and contacts of partition.boxes.
+//! \throw core::InputError when the boxes do not cover the inside cells exactly once
+void index_boxes(const OccupancyGrid& grid, BoxPartition& partition);
+
 //! Box corner (i, j, k each 0 or 1 for lo or hi) in polycube coordinates.
 core::Vec3 box_corner(const OccupancyGrid& grid, const Box& box, int i, int j, int k);
 
