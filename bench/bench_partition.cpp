@@ -7,9 +7,11 @@
 //! usage: bench_partition [--json] DIR ...
 #include "core/log.h"
 #include "core/stopwatch.h"
+#include "core/types.h"
 #include "fabricate/box_partition.h"
 #include "fabricate/corners.h"
 #include "fabricate/cut_plan.h"
+#include "fabricate/cut_planes.h"
 #include "io/polycube_map_io.h"
 
 #include <nlohmann/json.hpp>
@@ -32,7 +34,8 @@ struct Row {
   std::array<int, 3> grid{};
   int inside = 0, concave = 0, regions = 0, boxes = 0, merged = 0, cuts = 0, splits = 0,
       not_located = 0;
-  double seconds = 0;  // median
+  double plane_deviation = 0;  // largest over the cuts, % of the model diagonal
+  double seconds = 0;          // median
 };
 
 Row run(const std::filesystem::path& dir) {
@@ -48,10 +51,14 @@ Row run(const std::filesystem::path& dir) {
     fabricate::merge_boxes(g, p);
     const fabricate::CutPlan plan = fabricate::plan_cuts(g, p);
     const fabricate::BoxCorners corners = fabricate::map_corners(map, g, plan.partition);
+    const std::vector<fabricate::CutPlane> planes = fabricate::fit_cut_planes(map, g, plan);
     times.push_back(clock.seconds());
     r.cuts = static_cast<int>(plan.cuts.size());
     r.splits = plan.split_boxes;
     r.not_located = corners.not_located;
+    const double diagonal = core::bounding_box(map.model).extent().norm();
+    for (const auto& q : planes)
+      r.plane_deviation = std::max(r.plane_deviation, 100.0 * q.max_deviation / diagonal);
     r.grid = {g.cells(0), g.cells(1), g.cells(2)};
     r.inside = static_cast<int>(std::count(g.inside.begin(), g.inside.end(), 1));
     r.concave = p.concave_edges;
@@ -85,8 +92,9 @@ int main(int argc, char** argv) {
   core::logger().set_level(spdlog::level::err);
   nlohmann::json out = nlohmann::json::array();
   if (!json)
-    std::printf("%-28s %12s %7s %8s %8s %6s %7s %5s %7s %8s %9s\n", "model", "grid", "inside",
-                "concave", "regions", "boxes", "merged", "cuts", "splits", "outside", "s");
+    std::printf("%-28s %12s %7s %8s %8s %6s %7s %5s %7s %8s %12s %9s\n", "model", "grid", "inside",
+                "concave", "regions", "boxes", "merged", "cuts", "splits", "outside", "plane dev %",
+                "s");
   for (const auto& d : dirs) {
     try {
       const Row r = run(d);
@@ -101,11 +109,13 @@ int main(int argc, char** argv) {
                        {"cuts", r.cuts},
                        {"pinwheel_splits", r.splits},
                        {"corners_not_located", r.not_located},
+                       {"plane_max_deviation_percent", r.plane_deviation},
                        {"seconds", r.seconds}});
       } else {
-        std::printf("%-28s %4dx%3dx%3d %7d %8d %8d %6d %7d %5d %7d %8d %9.3f\n", r.model.c_str(),
-                    r.grid[0], r.grid[1], r.grid[2], r.inside, r.concave, r.regions, r.boxes,
-                    r.merged, r.cuts, r.splits, r.not_located, r.seconds);
+        std::printf("%-28s %4dx%3dx%3d %7d %8d %8d %6d %7d %5d %7d %8d %12.3f %9.3f\n",
+                    r.model.c_str(), r.grid[0], r.grid[1], r.grid[2], r.inside, r.concave,
+                    r.regions, r.boxes, r.merged, r.cuts, r.splits, r.not_located,
+                    r.plane_deviation, r.seconds);
       }
     } catch (const std::exception& e) {
       std::fprintf(stderr, "%s: %s\n", d.string().c_str(), e.what());

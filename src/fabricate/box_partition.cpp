@@ -225,14 +225,16 @@ void index_boxes(const OccupancyGrid& g, BoxPartition& p) {
         for (int i = b.lo[0]; i < b.hi[0]; ++i) {
           int& owner = p.cell_box[g.index(i, j, k)];
           if (!g.inside[g.index(i, j, k)] || owner >= 0)
-            throw core::InputError(fmt::format("box partition: box {} {} cell ({}, {}, {})", id,
-                                               owner >= 0 ? "overlaps another at" : "holds the outside", i, j, k));
+            throw core::InputError(
+                fmt::format("box partition: box {} {} cell ({}, {}, {})", id,
+                            owner >= 0 ? "overlaps another at" : "holds the outside", i, j, k));
           owner = static_cast<int>(id);
         }
   }
   for (std::size_t c = 0; c < g.inside.size(); ++c)
     if (g.inside[c] && p.cell_box[c] < 0)
-      throw core::InputError(fmt::format("box partition: cell {} inside the polycube is in no box", c));
+      throw core::InputError(
+          fmt::format("box partition: cell {} inside the polycube is in no box", c));
   std::map<std::tuple<int, int, int, int>, Contact> contacts;  // (a, b, axis, plane)
   for_each_interior_face(g, [&](int a, const Cell& x, const Cell& y) {
     const int ba = p.cell_box[g.index(x)], bb = p.cell_box[g.index(y)];

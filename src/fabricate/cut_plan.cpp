@@ -1,6 +1,7 @@
 //! Guillotine cut plan of a box partition (see cut_plan.h).
 #include "fabricate/cut_plan.h"
 
+#include "core/disjoint_sets.h"
 #include "core/errors.h"
 
 #include <algorithm>
@@ -78,9 +79,38 @@ int split_crossed(BoxPartition& p, std::vector<Cut>& cuts, std::vector<int>& gro
   return split;
 }
 
+//! When the group's boxes do not all touch: the separation of the part holding its lowest box
+//! from the rest.
+bool separate(const BoxPartition& p, const std::vector<int>& group, Cut& cut) {
+  std::vector<int> slot(p.boxes.size(), -1);
+  for (std::size_t i = 0; i < group.size(); ++i) slot[group[i]] = static_cast<int>(i);
+  core::DisjointSets ds(group.size());
+  for (const Contact& k : p.contacts)
+    if (slot[k.boxes[0]] >= 0 && slot[k.boxes[1]] >= 0)
+      ds.unite(slot[k.boxes[0]], slot[k.boxes[1]]);
+  const int first = ds.find(slot[*std::min_element(group.begin(), group.end())]);
+  cut.axis = -1;
+  cut.below.clear();
+  cut.above.clear();
+  for (int b : group) (ds.find(slot[b]) == first ? cut.below : cut.above).push_back(b);
+  std::sort(cut.below.begin(), cut.below.end());
+  std::sort(cut.above.begin(), cut.above.end());
+  return !cut.above.empty();
+}
+
 void plan_group(const OccupancyGrid& g, CutPlan& plan, std::vector<int> group, int parent,
                 bool parent_above) {
   if (group.size() < 2) return;
+  Cut apart;
+  apart.parent = parent;
+  apart.parent_above = parent_above;
+  if (separate(plan.partition, group, apart)) {
+    const int id = static_cast<int>(plan.cuts.size());
+    plan.cuts.push_back(apart);
+    plan_group(g, plan, apart.below, id, false);
+    plan_group(g, plan, apart.above, id, true);
+    return;
+  }
   std::vector<Candidate> cand = candidates(g, plan.partition, group);
   if (cand.empty())
     throw core::InputError("cut plan: a group of several boxes has no plane between them");

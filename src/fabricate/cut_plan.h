@@ -16,9 +16,11 @@
 
 namespace polycube::fabricate {
 
-//! One guillotine cut of a group of boxes.
+//! One guillotine cut of a group of boxes. A group whose boxes do not all touch (the arms of a U
+//! once its base is cut off) is instead separated into its connected parts: axis -1, no plane,
+//! since in model space its piece is already in separate components.
 struct Cut {
-  int axis = 0;                   //!< normal axis of the polycube plane
+  int axis = 0;                   //!< normal axis of the polycube plane; -1: a separation
   int plane = 0;                  //!< grid plane index along axis
   std::vector<int> below;         //!< boxes on the low side (ids of the plan's partition)
   std::vector<int> above;         //!< boxes on the high side

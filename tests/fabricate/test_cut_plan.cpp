@@ -1,8 +1,12 @@
 // The guillotine cut plan: every cut leaves the boxes of a group entirely on one side or the
 // other, the tree ends in single boxes (boxes - 1 cuts), and a pinwheel gets a box split.
 #include "fabricate/cut_plan.h"
+#include "fabricate/cut_planes.h"
+
+#include "../support/fixtures.h"
 
 #include <gtest/gtest.h>
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <set>
@@ -45,8 +49,19 @@ void expect_valid_plan(const fabricate::CutPlan& plan) {
     EXPECT_EQ(sides, group) << "cut " << c;
     EXPECT_FALSE(cut.below.empty());
     EXPECT_FALSE(cut.above.empty());
-    for (int b : cut.below) EXPECT_LE(boxes[b].hi[cut.axis], cut.plane);
-    for (int b : cut.above) EXPECT_GE(boxes[b].lo[cut.axis], cut.plane);
+    if (cut.axis >= 0) {
+      for (int b : cut.below) EXPECT_LE(boxes[b].hi[cut.axis], cut.plane);
+      for (int b : cut.above) EXPECT_GE(boxes[b].lo[cut.axis], cut.plane);
+    } else {  // a separation: no contact between the sides
+      EXPECT_TRUE(cut.contacts.empty());
+      for (const auto& k : plan.partition.contacts) {
+        const bool b0 = std::count(cut.below.begin(), cut.below.end(), k.boxes[0]) > 0;
+        const bool a1 = std::count(cut.above.begin(), cut.above.end(), k.boxes[1]) > 0;
+        const bool a0 = std::count(cut.above.begin(), cut.above.end(), k.boxes[0]) > 0;
+        const bool b1 = std::count(cut.below.begin(), cut.below.end(), k.boxes[1]) > 0;
+        EXPECT_FALSE((b0 && a1) || (a0 && b1));
+      }
+    }
     for (const auto& k : cut.contacts) {
       EXPECT_EQ(k.axis, cut.axis);
       EXPECT_EQ(k.plane, cut.plane);
@@ -100,6 +115,51 @@ TEST(CutPlan, APinwheelGetsOneBoxSplit) {
   EXPECT_EQ(plan.split_boxes, 1);
   EXPECT_EQ(plan.partition.boxes.size(), 6u);
   expect_valid_plan(plan);
+}
+
+TEST(CutPlan, TheArmsOfAUAreSeparatedNotCut) {
+  OccupancyGrid g = full_grid(3, 2, 1);
+  g.inside = {1, 1, 1, 1, 0, 1};
+  const auto p =
+      partition_of(g, {{{0, 0, 0}, {3, 1, 1}}, {{0, 1, 0}, {1, 2, 1}}, {{2, 1, 0}, {3, 2, 1}}});
+  const fabricate::CutPlan plan = fabricate::plan_cuts(g, p);
+  expect_valid_plan(plan);
+  ASSERT_EQ(plan.cuts.size(), 2u);
+  EXPECT_EQ(plan.cuts[0].axis, 1);  // the base off the arms
+  EXPECT_EQ(plan.cuts[0].contacts.size(), 2u);
+  EXPECT_EQ(plan.cuts[1].axis, -1);  // then the arms apart
+  EXPECT_EQ(plan.cuts[1].below, std::vector<int>{1});
+  EXPECT_EQ(plan.cuts[1].above, std::vector<int>{2});
+}
+
+TEST(CutPlanes, AnAffineMapGivesExactPlanesOrientedFromBelowToAbove) {
+  // The T of 4 unit hexes, mapped affinely: every cut's mapped points lie exactly on a plane
+  // whose normal is A^-T e_axis.
+  core::HexMesh h = test::hex_grid(3, 2, 1);
+  h.cells.erase(h.cells.begin() + 5);  // cell (2, 1, 0)
+  h.cells.erase(h.cells.begin() + 3);  // cell (0, 1, 0)
+  const core::TetMesh t = test::tetrahedralize(h);
+  Eigen::Matrix3d A;
+  A << 2, 0.5, 0, 0.1, 3, 0.2, 1, 0, 0.5;
+  const core::Vec3 shift(1, -2, 3);
+  std::vector<core::Vec3> model;
+  for (const auto& p : t.points) model.push_back(A * p + shift);
+  const core::PolycubeMap map{t.cells, model, t.points};
+  const OccupancyGrid g = fabricate::occupancy_grid(map);
+  fabricate::BoxPartition p = fabricate::partition_boxes(g);
+  fabricate::merge_boxes(g, p);
+  const fabricate::CutPlan plan = fabricate::plan_cuts(g, p);
+  ASSERT_EQ(plan.cuts.size(), 1u);
+  const std::vector<fabricate::CutPlane> planes = fabricate::fit_cut_planes(map, g, plan);
+  ASSERT_EQ(planes.size(), 1u);
+  const fabricate::CutPlane& q = planes[0];
+  EXPECT_EQ(q.points, 4);  // the 4 corners of the unit contact
+  EXPECT_LT(q.max_deviation, 1e-12);
+  const core::Vec3 expected =
+      (A.inverse().transpose() * core::Vec3::Unit(plan.cuts[0].axis)).normalized();
+  EXPECT_NEAR(q.normal.dot(expected), 1.0, 1e-12);
+  // The plane passes through the mapped contact: n . (A x + shift) = offset at polycube y = 1.
+  EXPECT_NEAR(q.normal.dot(A * core::Vec3(1, 1, 0) + shift), q.offset, 1e-12);
 }
 
 }  // namespace
