@@ -4,7 +4,9 @@
 //! the plan (and boxes a pinwheel split), corners not located in a tet, and the
 //! time (median of 3). Prints a text table, or JSON with --json.
 //!
-//! usage: bench_partition [--json] DIR ...
+//! usage: bench_partition [--json] DIR[=SOLID] ...   (with SOLID, the input surface: the parts are
+//! cut
+//!        too, once, and checked: closed, outward, no self-intersection, volumes adding up)
 #include "core/log.h"
 #include "core/stopwatch.h"
 #include "core/types.h"
@@ -12,6 +14,8 @@
 #include "fabricate/corners.h"
 #include "fabricate/cut_plan.h"
 #include "fabricate/cut_planes.h"
+#include "fabricate/parts.h"
+#include "io/mesh_io.h"
 #include "io/polycube_map_io.h"
 
 #include <nlohmann/json.hpp>
@@ -34,11 +38,13 @@ struct Row {
   std::array<int, 3> grid{};
   int inside = 0, concave = 0, regions = 0, boxes = 0, merged = 0, cuts = 0, splits = 0,
       not_located = 0;
-  double plane_deviation = 0;  // largest over the cuts, % of the model diagonal
-  double seconds = 0;          // median
+  double plane_deviation = 0;                  // largest over the cuts, % of the model diagonal
+  int parts = -1, bad_parts = 0, stray = 0;    // parts cut from the solid (-1: no solid given)
+  double volume_error = 0, parts_seconds = 0;  // |sum - solid| / solid, %
+  double seconds = 0;                          // median
 };
 
-Row run(const std::filesystem::path& dir) {
+Row run(const std::filesystem::path& dir, const std::string& solid_path) {
   const core::PolycubeMap map = io::read_polycube_map(dir / "model.mesh", dir / "polycube.mesh");
   Row r;
   r.model = dir.parent_path().filename().string();
@@ -67,6 +73,22 @@ Row run(const std::filesystem::path& dir) {
     const fabricate::BoxPartition again = fabricate::partition_boxes(g);
     r.regions = again.cut_regions;
   }
+  if (!solid_path.empty()) {  // the exact cuts, once (they take seconds, not milliseconds)
+    const fabricate::OccupancyGrid g = fabricate::occupancy_grid(map);
+    fabricate::BoxPartition p = fabricate::partition_boxes(g);
+    fabricate::merge_boxes(g, p);
+    const fabricate::CutPlan plan = fabricate::plan_cuts(g, p);
+    const auto planes = fabricate::fit_cut_planes(map, g, plan);
+    const fabricate::Parts parts = fabricate::cut_parts(
+        io::read_surface(solid_path), plan, planes, fabricate::box_lookup(map, g, plan.partition));
+    r.parts = static_cast<int>(parts.parts.size());
+    for (const auto& q : parts.parts) {
+      r.bad_parts += (!q.closed || !q.outward || q.self_intersecting) ? 1 : 0;
+      r.stray += q.components - 1;
+    }
+    r.volume_error = 100.0 * std::abs(parts.volume_sum - parts.solid_volume) / parts.solid_volume;
+    r.parts_seconds = parts.seconds;
+  }
   std::sort(times.begin(), times.end());
   r.seconds = times[kRuns / 2];
   return r;
@@ -76,7 +98,7 @@ Row run(const std::filesystem::path& dir) {
 
 int main(int argc, char** argv) {
   bool json = false;
-  std::vector<std::filesystem::path> dirs;
+  std::vector<std::string> dirs;  // DIR or DIR=SOLID (the solid's surface: also cut the parts)
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--json")
@@ -97,7 +119,9 @@ int main(int argc, char** argv) {
                 "s");
   for (const auto& d : dirs) {
     try {
-      const Row r = run(d);
+      const auto eq = d.find('=');
+      const Row r =
+          run(d.substr(0, eq), eq == std::string::npos ? std::string() : d.substr(eq + 1));
       if (json) {
         out.push_back({{"model", r.model},
                        {"grid", r.grid},
@@ -110,15 +134,25 @@ int main(int argc, char** argv) {
                        {"pinwheel_splits", r.splits},
                        {"corners_not_located", r.not_located},
                        {"plane_max_deviation_percent", r.plane_deviation},
+                       {"parts", r.parts},
+                       {"parts_failing_checks", r.bad_parts},
+                       {"stray_components", r.stray},
+                       {"volume_error_percent", r.volume_error},
+                       {"parts_seconds", r.parts_seconds},
                        {"seconds", r.seconds}});
       } else {
         std::printf("%-28s %4dx%3dx%3d %7d %8d %8d %6d %7d %5d %7d %8d %12.3f %9.3f\n",
                     r.model.c_str(), r.grid[0], r.grid[1], r.grid[2], r.inside, r.concave,
                     r.regions, r.boxes, r.merged, r.cuts, r.splits, r.not_located,
                     r.plane_deviation, r.seconds);
+        if (r.parts >= 0)
+          std::printf(
+              "    parts %d, failing checks %d, stray components %d, volume error %.2e %%, %.1f "
+              "s\n",
+              r.parts, r.bad_parts, r.stray, r.volume_error, r.parts_seconds);
       }
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "%s: %s\n", d.string().c_str(), e.what());
+      std::fprintf(stderr, "%s: %s\n", d.c_str(), e.what());
     }
   }
   if (json) std::cout << out.dump(2) << "\n";

@@ -1,0 +1,235 @@
+//! Exact cuts of the solid into parts (see parts.h).
+#include "fabricate/parts.h"
+
+#include "core/errors.h"
+#include "core/stopwatch.h"
+#include "mesh/tet_locator.h"
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Surface_mesh.h>
+#include <fmt/format.h>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <map>
+#include <memory>
+
+namespace polycube::fabricate {
+
+namespace {
+
+namespace PMP = CGAL::Polygon_mesh_processing;
+using EK = CGAL::Exact_predicates_exact_constructions_kernel;
+using ExactMesh = CGAL::Surface_mesh<EK::Point_3>;
+using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vec3 = core::Vec3;
+
+ExactMesh to_exact(const core::TriMesh& m) {
+  ExactMesh out;
+  std::vector<ExactMesh::Vertex_index> v;
+  v.reserve(m.points.size());
+  for (const Vec3& p : m.points) v.push_back(out.add_vertex(EK::Point_3(p.x(), p.y(), p.z())));
+  for (const auto& t : m.cells)
+    if (out.add_face(v[t[0]], v[t[1]], v[t[2]]) == ExactMesh::null_face())
+      throw core::InputError(
+          "fabricate: the solid's surface is not manifold (a triangle cannot be attached)");
+  return out;
+}
+
+Vec3 rounded(const EK::Point_3& p) {
+  return {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+}
+
+core::TriMesh to_double(const ExactMesh& m) {
+  core::TriMesh out;
+  std::map<ExactMesh::Vertex_index, int> id;
+  for (auto v : m.vertices()) {
+    id[v] = static_cast<int>(out.points.size());
+    out.points.push_back(rounded(m.point(v)));
+  }
+  for (auto f : m.faces()) {
+    std::array<int, 3> t{};
+    int k = 0;
+    for (auto v : CGAL::vertices_around_face(m.halfedge(f), m)) t[k++] = id[v];
+    out.cells.push_back(t);
+  }
+  return out;
+}
+
+//! A box of side 2 R around `centre` whose face on the plane separates the two half-boxes: the
+//! 4 corners on the plane are exact projections, so the two sides of a cut share them.
+ExactMesh half_box(const CutPlane& plane, const Vec3& centre, double R, bool above) {
+  const EK::Plane_3 h(plane.normal.x(), plane.normal.y(), plane.normal.z(), -plane.offset);
+  const Vec3 n = plane.normal;
+  const Vec3 u = (std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
+  const Vec3 v = n.cross(u);
+  const Vec3 c = centre - (n.dot(centre) - plane.offset) * n;
+  std::array<EK::Point_3, 8> p;
+  const double su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
+  const Vec3 far = (above ? R : -R) * n;
+  for (int i = 0; i < 4; ++i) {
+    const Vec3 q = c + R * (su[i] * u + sv[i] * v);
+    p[i] = h.projection(EK::Point_3(q.x(), q.y(), q.z()));
+    const Vec3 f = q + far;
+    p[i + 4] = EK::Point_3(f.x(), f.y(), f.z());
+  }
+  ExactMesh box;
+  std::array<ExactMesh::Vertex_index, 8> id;
+  for (int i = 0; i < 8; ++i) id[i] = box.add_vertex(p[i]);
+  // (u, v, n) is right-handed: the face on the plane turns clockwise seen from +n for the box
+  // above it (its outside is below), counter-clockwise for the box below.
+  const std::array<std::array<int, 4>, 6> quads{
+      {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}};
+  for (auto q : quads) {
+    if (!above) std::reverse(q.begin(), q.end());
+    box.add_face(id[q[0]], id[q[1]], id[q[2]]);
+    box.add_face(id[q[0]], id[q[2]], id[q[3]]);
+  }
+  return box;
+}
+
+//! Vertices within eps of the plane put exactly on it: faces that were meant to lie on the
+//! plane (a CAD face at a concave edge, a polycube-like model) become exactly coplanar with the
+//! cut instead of crossing it at a grazing angle, which leaves slivers that rounding folds.
+void snap_to_plane(ExactMesh& m, const CutPlane& plane, double eps) {
+  const EK::Plane_3 h(plane.normal.x(), plane.normal.y(), plane.normal.z(), -plane.offset);
+  for (auto v : m.vertices()) {
+    const Vec3 x = rounded(m.point(v));
+    if (std::abs(plane.normal.dot(x) - plane.offset) < eps) m.point(v) = h.projection(m.point(v));
+  }
+}
+
+//! The part of the piece on one side of the plane (exact corefinement with a half-box: faces
+//! of the piece lying on the plane, common on CAD shapes, are classified exactly).
+ExactMesh clip_side(const ExactMesh& piece, const CutPlane& plane, const Vec3& centre, double R,
+                    bool above) {
+  ExactMesh a = piece;
+  snap_to_plane(a, plane, 1e-9 * R);
+  ExactMesh box = half_box(plane, centre, R, above);
+  ExactMesh out;
+  if (!PMP::corefine_and_compute_intersection(a, box, out))
+    throw core::GeometryError("fabricate: an exact cut failed (the piece is not a closed solid)");
+  return out;
+}
+
+//! The connected components of a piece as separate meshes.
+std::vector<ExactMesh> components(const ExactMesh& piece) {
+  std::vector<ExactMesh> out;
+  PMP::split_connected_components(piece, out);
+  return out;
+}
+
+//! Majority box of a component's vertices (sampled), -1 when none maps into a box.
+int owner(const ExactMesh& c, const BoxOf& box_of) {
+  std::map<int, int> votes;
+  const std::size_t n = c.number_of_vertices();
+  const std::size_t step = std::max<std::size_t>(1, n / 64);
+  std::size_t i = 0;
+  for (auto v : c.vertices())
+    if (i++ % step == 0) {
+      const int b = box_of(rounded(c.point(v)));
+      if (b >= 0) ++votes[b];
+    }
+  int best = -1, count = 0;
+  for (const auto& [b, k] : votes)
+    if (k > count) {
+      best = b;
+      count = k;
+    }
+  return best;
+}
+
+void append(ExactMesh& to, const ExactMesh& from) { to.join(from); }
+
+Part finish(int box, const ExactMesh& piece) {
+  Part p;
+  p.box = box;
+  p.mesh = to_double(piece);
+  p.components = static_cast<int>(components(piece).size());
+  p.closed = CGAL::is_closed(piece);
+  CGAL::Surface_mesh<IK::Point_3> rounded_mesh;
+  std::vector<CGAL::Surface_mesh<IK::Point_3>::Vertex_index> v;
+  for (const Vec3& x : p.mesh.points)
+    v.push_back(rounded_mesh.add_vertex(IK::Point_3(x.x(), x.y(), x.z())));
+  for (const auto& t : p.mesh.cells) rounded_mesh.add_face(v[t[0]], v[t[1]], v[t[2]]);
+  p.self_intersecting = PMP::does_self_intersect(rounded_mesh);
+  p.volume = p.closed ? CGAL::to_double(PMP::volume(piece)) : 0.0;
+  p.outward = p.volume > 0;
+  return p;
+}
+
+}  // namespace
+
+BoxOf box_lookup(const core::PolycubeMap& map, const OccupancyGrid& grid,
+                 const BoxPartition& partition, double tolerance) {
+  auto locator = std::make_shared<mesh::TetLocator>(map.tets, map.model, tolerance);
+  return [locator, &map, &grid, &partition](const Vec3& x) {
+    bool located = false;
+    const Vec3 q =
+        mesh::map_through(map.tets, map.polycube, mesh::locate_or_nearest(*locator, x, located));
+    std::array<int, 3> cell{};
+    for (int a = 0; a < 3; ++a) {
+      const auto& pl = grid.planes[a];
+      const auto it = std::upper_bound(pl.begin(), pl.end(), q[a]);
+      cell[a] = std::clamp(static_cast<int>(it - pl.begin()) - 1, 0, grid.cells(a) - 1);
+    }
+    return partition.cell_box[grid.index(cell)];
+  };
+}
+
+Parts cut_parts(const core::TriMesh& solid, const CutPlan& plan,
+                const std::vector<CutPlane>& planes, const BoxOf& box_of) {
+  const core::Stopwatch clock;
+  if (planes.size() != plan.cuts.size())
+    throw core::InputError(
+        fmt::format("fabricate: {} planes for {} cuts", planes.size(), plan.cuts.size()));
+  const ExactMesh whole = to_exact(solid);
+  if (!CGAL::is_closed(whole))
+    throw core::InputError("fabricate: the solid's surface is not closed");
+  Parts out;
+  out.solid_volume = CGAL::to_double(PMP::volume(whole));
+  const core::BoundingBox bb = core::bounding_box(solid.points);
+  const Vec3 centre = 0.5 * (bb.min + bb.max);
+  const double R = 2.0 * bb.extent().norm();
+  if (plan.cuts.empty()) {
+    out.parts.push_back(finish(plan.partition.boxes.empty() ? -1 : 0, whole));
+    out.volume_sum = out.parts[0].volume;
+    out.seconds = clock.seconds();
+    return out;
+  }
+  // sides[c][0 or 1]: the piece below / above cut c.
+  std::vector<std::array<ExactMesh, 2>> sides(plan.cuts.size());
+  for (std::size_t c = 0; c < plan.cuts.size(); ++c) {
+    const Cut& cut = plan.cuts[c];
+    const ExactMesh& piece = cut.parent < 0 ? whole : sides[cut.parent][cut.parent_above ? 1 : 0];
+    if (cut.axis >= 0) {
+      sides[c][0] = clip_side(piece, planes[c], centre, R, false);
+      sides[c][1] = clip_side(piece, planes[c], centre, R, true);
+      continue;
+    }
+    for (const ExactMesh& comp : components(piece)) {
+      const int b = owner(comp, box_of);
+      const bool above = b >= 0 && std::count(cut.above.begin(), cut.above.end(), b) > 0;
+      out.unassigned_components +=
+          b < 0 || (!above && std::count(cut.below.begin(), cut.below.end(), b) == 0);
+      append(sides[c][above ? 1 : 0], comp);
+    }
+  }
+  for (std::size_t c = 0; c < plan.cuts.size(); ++c)
+    for (int s = 0; s < 2; ++s) {
+      const auto& group = s ? plan.cuts[c].above : plan.cuts[c].below;
+      if (group.size() == 1) out.parts.push_back(finish(group[0], sides[c][s]));
+    }
+  std::sort(out.parts.begin(), out.parts.end(),
+            [](const Part& a, const Part& b) { return a.box < b.box; });
+  for (const Part& p : out.parts) out.volume_sum += p.volume;
+  out.seconds = clock.seconds();
+  return out;
+}
+
+}  // namespace polycube::fabricate
