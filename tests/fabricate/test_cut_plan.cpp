@@ -3,7 +3,7 @@
 #include "fabricate/cut_plan.h"
 #include "fabricate/cut_planes.h"
 
-#include "../support/fixtures.h"
+#include "fabricate_fixtures.h"
 
 #include <gtest/gtest.h>
 #include <Eigen/LU>
@@ -133,18 +133,12 @@ TEST(CutPlan, TheArmsOfAUAreSeparatedNotCut) {
 }
 
 TEST(CutPlanes, AnAffineMapGivesExactPlanesOrientedFromBelowToAbove) {
-  // The T of 4 unit hexes, mapped affinely: every cut's mapped points lie exactly on a plane
-  // whose normal is A^-T e_axis.
-  core::HexMesh h = test::hex_grid(3, 2, 1);
-  h.cells.erase(h.cells.begin() + 5);  // cell (2, 1, 0)
-  h.cells.erase(h.cells.begin() + 3);  // cell (0, 1, 0)
-  const core::TetMesh t = test::tetrahedralize(h);
-  Eigen::Matrix3d A;
-  A << 2, 0.5, 0, 0.1, 3, 0.2, 1, 0, 0.5;
-  const core::Vec3 shift(1, -2, 3);
-  std::vector<core::Vec3> model;
-  for (const auto& p : t.points) model.push_back(A * p + shift);
-  const core::PolycubeMap map{t.cells, model, t.points};
+  // The T mapped affinely: every cut's mapped points lie exactly on a plane whose normal is
+  // A^-T e_axis.
+  const test::AffineT t = test::affine_t();
+  const core::PolycubeMap& map = t.map;
+  const Eigen::Matrix3d& A = t.A;
+  const core::Vec3& shift = t.shift;
   const OccupancyGrid g = fabricate::occupancy_grid(map);
   fabricate::BoxPartition p = fabricate::partition_boxes(g);
   fabricate::merge_boxes(g, p);

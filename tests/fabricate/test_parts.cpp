@@ -4,7 +4,7 @@
 #include "core/topology.h"
 #include "fabricate/parts.h"
 
-#include "../support/fixtures.h"
+#include "fabricate_fixtures.h"
 
 #include <gtest/gtest.h>
 #include <Eigen/LU>
@@ -13,24 +13,17 @@ namespace polycube {
 namespace {
 
 TEST(Parts, AnAffineTIsCutIntoItsTwoBoxesExactly) {
-  core::HexMesh h = test::hex_grid(3, 2, 1);
-  h.cells.erase(h.cells.begin() + 5);
-  h.cells.erase(h.cells.begin() + 3);
-  const core::TetMesh t = test::tetrahedralize(h);
-  Eigen::Matrix3d A;
-  A << 2, 0.5, 0, 0.1, 3, 0.2, 1, 0, 0.5;
-  const core::Vec3 shift(1, -2, 3);
-  std::vector<core::Vec3> model;
-  for (const auto& p : t.points) model.push_back(A * p + shift);
-  const core::PolycubeMap map{t.cells, model, t.points};
+  const test::AffineT t = test::affine_t();
+  const core::PolycubeMap& map = t.map;
+  const Eigen::Matrix3d& A = t.A;
   const fabricate::OccupancyGrid g = fabricate::occupancy_grid(map);
   fabricate::BoxPartition p = fabricate::partition_boxes(g);
   fabricate::merge_boxes(g, p);
   const fabricate::CutPlan plan = fabricate::plan_cuts(g, p);
   const auto planes = fabricate::fit_cut_planes(map, g, plan);
   core::TetMesh mt;
-  mt.points = model;
-  mt.cells = t.cells;
+  mt.points = map.model;
+  mt.cells = map.tets;
   const core::TetBoundary b = core::boundary(mt);
   const fabricate::Parts parts =
       fabricate::cut_parts(b.surface, plan, planes, fabricate::box_lookup(map, g, plan.partition));
