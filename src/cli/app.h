@@ -91,5 +91,6 @@ void register_simplify(CLI::App& app);
 void register_optimize(CLI::App& app);
 void register_pad(CLI::App& app);
 void register_run(CLI::App& app);
+void register_fabricate(CLI::App& app);
 
 }  // namespace polycube::cli

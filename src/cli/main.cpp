@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   register_optimize(app);
   register_pad(app);
   register_run(app);
+  register_fabricate(app);
 
   app.parse_complete_callback(setup_logging_and_progress);
 
