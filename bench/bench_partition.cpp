@@ -4,11 +4,12 @@
 //! the plan (and boxes a pinwheel split), corners not located in a tet, and the
 //! time (median of 3). Prints a text table, or JSON with --json.
 //!
-//! usage: bench_partition [--json] DIR[=SOLID] ...   (with SOLID, the input surface: the parts are
-//! cut
-//!        too, once, and checked: closed, outward, no self-intersection, volumes adding up)
+//! usage: bench_partition [--json] DIR[=SOLID] ...
+//!   With SOLID (a surface file, or "map" for the boundary of the map's model tets) the parts are
+//!   cut too, once, and checked: closed, outward, no self-intersection, volumes adding up.
 #include "core/log.h"
 #include "core/stopwatch.h"
+#include "core/topology.h"
 #include "core/types.h"
 #include "fabricate/box_partition.h"
 #include "fabricate/corners.h"
@@ -79,8 +80,10 @@ Row run(const std::filesystem::path& dir, const std::string& solid_path) {
     fabricate::merge_boxes(g, p);
     const fabricate::CutPlan plan = fabricate::plan_cuts(g, p);
     const auto planes = fabricate::fit_cut_planes(map, g, plan);
-    const fabricate::Parts parts = fabricate::cut_parts(
-        io::read_surface(solid_path), plan, planes, fabricate::box_lookup(map, g, plan.partition));
+    const fabricate::Parts parts =
+        fabricate::cut_parts((solid_path == "map" ? core::boundary(map.model_mesh()).surface
+                                                  : io::read_surface(solid_path)),
+                             plan, planes, fabricate::box_lookup(map, g, plan.partition));
     r.parts = static_cast<int>(parts.parts.size());
     for (const auto& q : parts.parts) {
       r.bad_parts += (!q.closed || !q.outward || q.self_intersecting) ? 1 : 0;
