@@ -50,15 +50,19 @@ Row run(const std::filesystem::path& dir, const std::string& solid_path) {
   Row r;
   r.model = dir.parent_path().filename().string();
   std::vector<double> times;
+  fabricate::OccupancyGrid g;  // the last run's, for the exact cuts below
+  fabricate::CutPlan plan;
+  std::vector<fabricate::CutPlane> planes;
   for (int i = 0; i < kRuns; ++i) {
     const core::Stopwatch clock;
-    const fabricate::OccupancyGrid g = fabricate::occupancy_grid(map);
+    g = fabricate::occupancy_grid(map);
     fabricate::BoxPartition p = fabricate::partition_boxes(g);
     const int boxes = static_cast<int>(p.boxes.size());
+    r.regions = p.cut_regions;
     fabricate::merge_boxes(g, p);
-    const fabricate::CutPlan plan = fabricate::plan_cuts(g, p);
+    plan = fabricate::plan_cuts(g, p);
     const fabricate::BoxCorners corners = fabricate::map_corners(map, g, plan.partition);
-    const std::vector<fabricate::CutPlane> planes = fabricate::fit_cut_planes(map, g, plan);
+    planes = fabricate::fit_cut_planes(map, g, plan);
     times.push_back(clock.seconds());
     r.cuts = static_cast<int>(plan.cuts.size());
     r.splits = plan.split_boxes;
@@ -71,15 +75,8 @@ Row run(const std::filesystem::path& dir, const std::string& solid_path) {
     r.concave = p.concave_edges;
     r.boxes = boxes;
     r.merged = static_cast<int>(p.boxes.size());
-    const fabricate::BoxPartition again = fabricate::partition_boxes(g);
-    r.regions = again.cut_regions;
   }
   if (!solid_path.empty()) {  // the exact cuts, once (they take seconds, not milliseconds)
-    const fabricate::OccupancyGrid g = fabricate::occupancy_grid(map);
-    fabricate::BoxPartition p = fabricate::partition_boxes(g);
-    fabricate::merge_boxes(g, p);
-    const fabricate::CutPlan plan = fabricate::plan_cuts(g, p);
-    const auto planes = fabricate::fit_cut_planes(map, g, plan);
     const fabricate::Parts parts =
         fabricate::cut_parts((solid_path == "map" ? core::boundary(map.model_mesh()).surface
                                                   : io::read_surface(solid_path)),

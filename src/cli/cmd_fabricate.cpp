@@ -70,6 +70,7 @@ void run_fabricate(const FabricateOptions& o) {
 
   std::filesystem::create_directories(o.output);
   nlohmann::json list = nlohmann::json::array();
+  std::size_t written = 0;
   std::string text = fmt::format(
       "{} boxes, {} after merging, {} cuts; {} parts (solid volume {:.6g}, parts {:.6g})\n", boxes,
       plan.partition.boxes.size(), plan.cuts.size(), parts.parts.size(), parts.solid_volume,
@@ -78,8 +79,10 @@ void run_fabricate(const FabricateOptions& o) {
   for (std::size_t i = 0; i < parts.parts.size(); ++i) {
     const fabricate::Part& p = parts.parts[i];
     const std::string file = fmt::format("part_{:02d}.stl", i);
-    if (!p.mesh.cells.empty())
+    if (!p.mesh.cells.empty()) {
       io::write_mesh(std::filesystem::path(o.output) / file, core::to_mesh_data(p.mesh));
+      ++written;
+    }
     const std::string why = part_problem(p);
     const fabricate::Box& b = plan.partition.boxes[static_cast<std::size_t>(p.box)];
     list.push_back({{"file", p.mesh.cells.empty() ? "" : file},
@@ -105,12 +108,7 @@ void run_fabricate(const FabricateOptions& o) {
                       {"seconds", parts.seconds},
                       {"parts", list}};
   io::write_text_atomic(std::filesystem::path(o.output) / "parts.json", j.dump(2) + "\n");
-  text += fmt::format(
-      "wrote {} part STL files and parts.json to {}\n",
-      parts.parts.size() - static_cast<std::size_t>(std::count_if(
-                               parts.parts.begin(), parts.parts.end(),
-                               [](const fabricate::Part& p) { return p.mesh.cells.empty(); })),
-      o.output);
+  text += fmt::format("wrote {} part STL files and parts.json to {}\n", written, o.output);
   print_result(j, text);
 }
 

@@ -12,6 +12,7 @@
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/property_map.h>
 #include <fmt/format.h>
 #include <Eigen/Geometry>
 
@@ -144,13 +145,13 @@ int owner(const ExactMesh& c, const BoxOf& box_of) {
   return best;
 }
 
-void append(ExactMesh& to, const ExactMesh& from) { to.join(from); }
-
 Part finish(int box, const ExactMesh& piece) {
   Part p;
   p.box = box;
   p.mesh = to_double(piece);
-  p.components = static_cast<int>(components(piece).size());
+  std::vector<std::size_t> component(piece.num_faces());  // num_faces counts removed ones too
+  p.components = static_cast<int>(
+      PMP::connected_components(piece, CGAL::make_property_map(component)));
   p.closed = CGAL::is_closed(piece);
   CGAL::Surface_mesh<IK::Point_3> rounded_mesh;
   std::vector<CGAL::Surface_mesh<IK::Point_3>::Vertex_index> v;
@@ -217,7 +218,7 @@ Parts cut_parts(const core::TriMesh& solid, const CutPlan& plan,
       const bool above = b >= 0 && std::count(cut.above.begin(), cut.above.end(), b) > 0;
       out.unassigned_components +=
           b < 0 || (!above && std::count(cut.below.begin(), cut.below.end(), b) == 0);
-      append(sides[c][above ? 1 : 0], comp);
+      sides[c][above ? 1 : 0].join(comp);
     }
   }
   for (std::size_t c = 0; c < plan.cuts.size(); ++c)

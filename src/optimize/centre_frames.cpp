@@ -3,7 +3,6 @@
 
 #include "core/elements.h"
 
-#include <tbb/parallel_for.h>
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -33,33 +32,11 @@ double normalized(const Vec3& a, const Vec3& b, const Vec3& c) {
   return l > 0 ? a.dot(b.cross(c)) / l : 0.0;
 }
 
-double corner_min(const core::HexMesh& m, const core::Hex& h) {
-  double v = 1.0;
-  for (int i = 0; i < 8; ++i) {
-    const auto& nb = core::kHexCornerNeighbors[i];
-    const Vec3& p = m.points[h[i]];
-    v = std::min(
-        v, normalized(m.points[h[nb[0]]] - p, m.points[h[nb[1]]] - p, m.points[h[nb[2]]] - p));
-  }
-  return v;
-}
-
 }  // namespace
 
 double centre_value(const core::HexMesh& mesh, const core::Hex& h) {
   const auto x = principal_axes(mesh, h);
   return normalized(x[0], x[1], x[2]);
-}
-
-std::vector<int> centre_limited_hexes(const core::HexMesh& mesh) {
-  std::vector<char> limited(mesh.cells.size(), 0);
-  tbb::parallel_for(std::size_t{0}, mesh.cells.size(), [&](std::size_t c) {
-    limited[c] = centre_value(mesh, mesh.cells[c]) <= corner_min(mesh, mesh.cells[c]);
-  });
-  std::vector<int> out;
-  for (std::size_t c = 0; c < limited.size(); ++c)
-    if (limited[c]) out.push_back(static_cast<int>(c));
-  return out;
 }
 
 std::vector<std::array<double, 3>> centre_lengths(const core::HexMesh& mesh,
@@ -77,7 +54,7 @@ std::vector<std::array<double, 3>> centre_lengths(const core::HexMesh& mesh,
 }
 
 solve::LinearReduction with_centre_tets(const solve::LinearReduction& reduction,
-                                        const core::HexMesh& mesh, const std::vector<int>& hexes,
+                                        const core::HexMesh& mesh,
                                         const std::vector<std::array<double, 3>>& lengths,
                                         const std::vector<double>& multiplier, double weight,
                                         solve::TetElements& elements) {
@@ -85,8 +62,9 @@ solve::LinearReduction with_centre_tets(const solve::LinearReduction& reduction,
   // plus[a]).
   const int base1 = reduction.num_points();
   std::vector<solve::DerivedPoint> faces;
-  faces.reserve(6 * hexes.size());
-  for (int c : hexes)
+  const std::size_t n = mesh.cells.size();
+  faces.reserve(6 * n);
+  for (std::size_t c = 0; c < n; ++c)
     for (int a = 0; a < 3; ++a)
       for (const auto& face : {kMinus[a], kPlus[a]}) {
         solve::DerivedPoint p;
@@ -100,8 +78,8 @@ solve::LinearReduction with_centre_tets(const solve::LinearReduction& reduction,
   // Level 2: the tips F- + (F+ - F-) of axes 2 and 3 taken from F- of axis 1.
   const int base2 = with_faces.num_points();
   std::vector<solve::DerivedPoint> tips;
-  tips.reserve(2 * hexes.size());
-  for (std::size_t k = 0; k < hexes.size(); ++k) {
+  tips.reserve(2 * n);
+  for (std::size_t k = 0; k < n; ++k) {
     const int f = base1 + 6 * static_cast<int>(k);
     for (int a = 1; a < 3; ++a) {
       solve::DerivedPoint p;
@@ -111,8 +89,8 @@ solve::LinearReduction with_centre_tets(const solve::LinearReduction& reduction,
     }
   }
   // The tet (F1-, F1+, tip 2, tip 3) against a right-angled corner of the reference lengths.
-  for (std::size_t k = 0; k < hexes.size(); ++k) {
-    const auto c = static_cast<std::size_t>(hexes[k]);
+  for (std::size_t c = 0; c < n; ++c) {
+    const std::size_t k = c;
     const int f = base1 + 6 * static_cast<int>(k);
     const int t = base2 + 2 * static_cast<int>(k);
     const auto& l = lengths[c];

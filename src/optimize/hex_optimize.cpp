@@ -14,8 +14,8 @@
 #include "quality/surface_distance.h"
 #include "solve/untangle.h"
 
-#include <Eigen/Geometry>
 #include <tbb/parallel_for.h>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <array>
@@ -31,7 +31,9 @@ namespace {
 using core::Vec3;
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 //! Mean edge length of each hex (the scale of its ideal-cube reference).
 std::vector<double> hex_sizes(const core::HexMesh& m) {
@@ -39,12 +41,14 @@ std::vector<double> hex_sizes(const core::HexMesh& m) {
   double total = 0;
   for (std::size_t c = 0; c < m.cells.size(); ++c) {
     double len = 0;
-    for (const auto& e : core::kHexEdges) len += (m.points[m.cells[c][e[0]]] - m.points[m.cells[c][e[1]]]).norm();
+    for (const auto& e : core::kHexEdges)
+      len += (m.points[m.cells[c][e[0]]] - m.points[m.cells[c][e[1]]]).norm();
     h[c] = len / 12.0;
     total += h[c];
   }
   const double mean = total / std::max<std::size_t>(1, h.size());
-  if (!(mean > 0) || !std::isfinite(mean)) throw core::InputError("hex mesh: every hex is degenerate");
+  if (!(mean > 0) || !std::isfinite(mean))
+    throw core::InputError("hex mesh: every hex is degenerate");
   for (double& x : h)
     if (!(x > 1e-6 * mean)) x = mean;  // collapsed hex: use the mean size
   return h;
@@ -56,7 +60,8 @@ std::vector<double> hex_sizes(const core::HexMesh& m) {
 //! scaled Jacobian without fighting a mesh's grading or anisotropy.
 //! \param lengths #H*8 by 3 input edge lengths of each corner (zero ones replaced by the hex size)
 //! \param multiplier #H weight factors
-solve::TetElements corner_elements(const core::HexMesh& m, const std::vector<std::array<double, 3>>& lengths,
+solve::TetElements corner_elements(const core::HexMesh& m,
+                                   const std::vector<std::array<double, 3>>& lengths,
                                    const std::vector<double>& multiplier) {
   solve::TetElements el;
   const std::size_t n = m.cells.size() * 8;
@@ -99,22 +104,20 @@ std::vector<double> reference_scale(const std::vector<double>& size, double unif
 
 //! Reference edge lengths of every hex corner (8 per hex, in kHexCornerNeighbors order): the
 //! input's, times the hex's reference scale.
-std::vector<std::array<double, 3>> corner_lengths(const core::HexMesh& m, const std::vector<double>& size,
+std::vector<std::array<double, 3>> corner_lengths(const core::HexMesh& m,
+                                                  const std::vector<double>& size,
                                                   const std::vector<double>& scale) {
   std::vector<std::array<double, 3>> out(m.cells.size() * 8);
   for (std::size_t c = 0; c < m.cells.size(); ++c)
     for (int i = 0; i < 8; ++i)
       for (int d = 0; d < 3; ++d) {
-        const double l = (m.points[m.cells[c][core::kHexCornerNeighbors[i][d]]] - m.points[m.cells[c][i]]).norm();
-        out[8 * c + i][d] = scale[c] * (l > 0.05 * size[c] ? l : size[c]);  // collapsed edge: the hex size
+        const double l =
+            (m.points[m.cells[c][core::kHexCornerNeighbors[i][d]]] - m.points[m.cells[c][i]])
+                .norm();
+        out[8 * c + i][d] =
+            scale[c] * (l > 0.05 * size[c] ? l : size[c]);  // collapsed edge: the hex size
       }
   return out;
-}
-
-std::vector<int> all_hexes(const core::HexMesh& m) {
-  std::vector<int> all(m.cells.size());
-  for (std::size_t c = 0; c < all.size(); ++c) all[c] = static_cast<int>(c);
-  return all;
 }
 
 //! Corner and centre Jacobians of a hex that are not positive (the centre as Verdict's).
@@ -123,7 +126,8 @@ int inverted_jacobians(const core::HexMesh& m, const core::Hex& h) {
   for (int i = 0; i < 8; ++i) {
     const auto& nb = core::kHexCornerNeighbors[i];
     const Vec3& p = m.points[h[i]];
-    n += !((m.points[h[nb[0]]] - p).dot((m.points[h[nb[1]]] - p).cross(m.points[h[nb[2]]] - p)) > 0);
+    n +=
+        !((m.points[h[nb[0]]] - p).dot((m.points[h[nb[1]]] - p).cross(m.points[h[nb[2]]] - p)) > 0);
   }
   return n;
 }
@@ -146,8 +150,10 @@ struct Problem {
   VertexRoles roles;
   solve::LinearReduction reduction;
   std::vector<solve::Attraction> attractions;
-  std::vector<double> stiffness;  //!< per attraction: weight factor, raised where the vertex drifted
-  std::vector<double> vertex_weight;  //!< #V attraction weight of a boundary vertex before stiffening
+  std::vector<double>
+      stiffness;  //!< per attraction: weight factor, raised where the vertex drifted
+  std::vector<double>
+      vertex_weight;  //!< #V attraction weight of a boundary vertex before stiffening
 
   //! Move every attraction target to the closest point of its surface or feature lines.
   //! Put every attracted vertex exactly on its target, except where that would invert a
@@ -158,7 +164,8 @@ struct Problem {
     project(solve::flatten(mesh.points), attr);
     const std::vector<Vec3> old = mesh.points;
     std::vector<int> bad_before(mesh.cells.size());
-    for (std::size_t c = 0; c < mesh.cells.size(); ++c) bad_before[c] = inverted_jacobians(mesh, mesh.cells[c]);
+    for (std::size_t c = 0; c < mesh.cells.size(); ++c)
+      bad_before[c] = inverted_jacobians(mesh, mesh.cells[c]);
     std::vector<char> moved(mesh.points.size(), 0);
     for (const auto& a : attr) {
       mesh.points[a.vertex] = a.target;
@@ -176,7 +183,8 @@ struct Problem {
             p[i] = mesh.points[h[i]];
             touched = touched || moved[h[i]];
           }
-          if (!touched || bad_before[c] > 0 || quality::hex_scaled_jacobian(p).value >= floor) continue;
+          if (!touched || bad_before[c] > 0 || quality::hex_scaled_jacobian(p).value >= floor)
+            continue;
         }
         for (int v : mesh.cells[c])
           if (moved[v]) {
@@ -191,7 +199,8 @@ struct Problem {
 
   //! Attraction weights: surface_weight * (reference volume around v) / h_v², times each
   //! attraction's stiffness (1 unless the vertex drifted off the target, see below).
-  void set_weights(const core::HexMesh& mesh, const std::vector<double>& size, double surface_weight) {
+  void set_weights(const core::HexMesh& mesh, const std::vector<double>& size,
+                   double surface_weight) {
     std::vector<double> volume(mesh.points.size(), 0.0);
     for (std::size_t c = 0; c < mesh.cells.size(); ++c)
       for (int v : mesh.cells[c]) volume[v] += size[c] * size[c] * size[c];
@@ -210,7 +219,8 @@ struct Problem {
     std::vector<solve::Attraction> attr = attractions;
     project(solve::flatten(mesh.points), attr);
     std::vector<double> d(attr.size());
-    for (std::size_t k = 0; k < attr.size(); ++k) d[k] = (mesh.points[attr[k].vertex] - attr[k].target).norm();
+    for (std::size_t k = 0; k < attr.size(); ++k)
+      d[k] = (mesh.points[attr[k].vertex] - attr[k].target).norm();
     return d;
   }
 
@@ -218,21 +228,23 @@ struct Problem {
     tbb::parallel_for(std::size_t{0}, attr.size(), [&](std::size_t k) {
       const Vec3 p = x.segment<3>(3 * static_cast<Eigen::Index>(attr[k].vertex));
       const auto v = static_cast<std::size_t>(attr[k].vertex);  // beyond the mesh: a quad centre
-      attr[k].target = v < roles.role.size() && roles.role[v] == VertexRole::Feature ? target->closest_feature_point(p)
-                                                                                    : target->closest_point(p);
+      attr[k].target = v < roles.role.size() && roles.role[v] == VertexRole::Feature
+                           ? target->closest_feature_point(p)
+                           : target->closest_point(p);
     });
   }
 };
 
-Problem make_problem(core::HexMesh& mesh, const TargetSurface& target, const std::vector<double>& size,
-                     const OptimizeOptions& o) {
+Problem make_problem(core::HexMesh& mesh, const TargetSurface& target,
+                     const std::vector<double>& size, const OptimizeOptions& o) {
   Problem pb;
   pb.target = &target;
   pb.roles = classify_vertices(mesh, target, o.feature_angle, o.feature_distance);
   const int nv = mesh.num_points();
   // Corners take their target positions now and stay there.
   for (int v = 0; v < nv; ++v)
-    if (pb.roles.role[v] == VertexRole::Corner) mesh.points[v] = target.corner_position(pb.roles.corner[v]);
+    if (pb.roles.role[v] == VertexRole::Corner)
+      mesh.points[v] = target.corner_position(pb.roles.corner[v]);
   std::vector<int> var(3 * static_cast<std::size_t>(nv), -1);
   int nvar = 0;
   for (int v = 0; v < nv; ++v)
@@ -241,7 +253,8 @@ Problem make_problem(core::HexMesh& mesh, const TargetSurface& target, const std
   pb.reduction = solve::index_reduction(var, nvar, solve::flatten(mesh.points));
   for (int v = 0; v < nv; ++v) {
     const VertexRole r = pb.roles.role[v];
-    if (r == VertexRole::Surface || r == VertexRole::Feature) pb.attractions.push_back({v, mesh.points[v], 0.0});
+    if (r == VertexRole::Surface || r == VertexRole::Feature)
+      pb.attractions.push_back({v, mesh.points[v], 0.0});
   }
   pb.set_weights(mesh, size, o.surface_weight);
   pb.project(solve::flatten(mesh.points), pb.attractions);
@@ -264,31 +277,39 @@ struct Optimization {
   core::HexMesh& mesh;
   const core::TriMesh& target_mesh;
   Problem& pb;
-  const std::vector<double>& size;                    //!< #H input mean edge length of each hex
-  const std::vector<std::array<double, 3>>& lengths;  //!< #H*8 by 3 reference edge lengths of the corners
-  const std::vector<std::array<double, 3>>& centre;   //!< #H by 3 reference lengths of the centre tets
+  const std::vector<double>& size;  //!< #H input mean edge length of each hex
+  const std::vector<std::array<double, 3>>&
+      lengths;  //!< #H*8 by 3 reference edge lengths of the corners
+  const std::vector<std::array<double, 3>>&
+      centre;  //!< #H by 3 reference lengths of the centre tets
   //! #H weight factors of the hexes: 1 while untangling, raised on the worst hexes by the
   //! quality rounds (the retries keep the last round's).
   std::vector<double> multiplier;
   const OptimizeOptions& o;
 
-  [[nodiscard]] solve::TetElements elements() const { return corner_elements(mesh, lengths, multiplier); }
+  [[nodiscard]] solve::TetElements elements() const {
+    return corner_elements(mesh, lengths, multiplier);
+  }
   //! The boundary's Hausdorff distance to the target, relative to its bounding-box diagonal.
-  [[nodiscard]] double hausdorff() const { return quality::hausdorff_distance(mesh, target_mesh).relative; }
+  [[nodiscard]] double hausdorff() const {
+    return quality::hausdorff_distance(mesh, target_mesh).relative;
+  }
 };
 
 //! Optimize the mesh's points from their current positions. With o.boundary_barrier > 0 the
 //! boundary quad corners are lifted (boundary_lift.h): all of them while untangling, only those
 //! facing the target's side now during quality rounds (so the barrier never turns an
 //! optimization into an untangling).
-solve::UntangleResult run(const Optimization& w, solve::UntangleOptions uo, bool untangling, double face_weight) {
+solve::UntangleResult run(const Optimization& w, solve::UntangleOptions uo, bool untangling,
+                          double face_weight) {
   const Problem& pb = w.pb;
   const OptimizeOptions& o = w.o;
   core::HexMesh& mesh = w.mesh;
   solve::TetElements el = w.elements();
   solve::LinearReduction reduction = pb.reduction;
   if (o.boundary_barrier > 0) {
-    const BoundaryLift lift = lift_boundary(mesh, *pb.target, pb.roles.edge_length, o.boundary_barrier, !untangling);
+    const BoundaryLift lift =
+        lift_boundary(mesh, *pb.target, pb.roles.edge_length, o.boundary_barrier, !untangling);
     append(el, lift.elements);
     reduction = with_apexes(reduction, lift);
   }
@@ -308,7 +329,7 @@ solve::UntangleResult run(const Optimization& w, solve::UntangleOptions uo, bool
     uo.attractions.insert(uo.attractions.end(), centres.begin(), centres.end());
   }
   // Last, so that the apexes and quad centres keep the point numbers their elements use.
-  reduction = with_centre_tets(reduction, mesh, all_hexes(mesh), w.centre, w.multiplier, o.centre_weight, el);
+  reduction = with_centre_tets(reduction, mesh, w.centre, w.multiplier, o.centre_weight, el);
   if (pb.reduction.num_variables() > o.cholesky_max_variables) {
     uo.linear_solver = solve::NewtonSolver::ConjugateGradient;
     uo.cg_iterations = o.cg_iterations;
@@ -334,9 +355,11 @@ void add(PhaseReport& p, const solve::UntangleResult& r) {
 
 void check_input(const core::HexMesh& mesh, const OptimizeOptions& o) {
   if (mesh.cells.empty()) throw core::InputError("hex mesh: no hexahedra");
-  if (!(o.surface_weight >= 0) || o.untangle_iterations < 0 || o.quality_rounds < 0 || o.quality_iterations < 1 ||
-      !(o.volume_weight > 0) || !(o.feature_angle > 0 && o.feature_angle < 180) || !(o.feature_distance > 0) ||
-      !(o.drift_diagonal > 0) || !(o.hausdorff_bound > 0) || o.drift_retries < 0 || !(o.size_uniformity >= 0 && o.size_uniformity <= 1) || !(o.face_attraction >= 0) ||
+  if (!(o.surface_weight >= 0) || o.untangle_iterations < 0 || o.quality_rounds < 0 ||
+      o.quality_iterations < 1 || !(o.volume_weight > 0) ||
+      !(o.feature_angle > 0 && o.feature_angle < 180) || !(o.feature_distance > 0) ||
+      !(o.drift_diagonal > 0) || !(o.hausdorff_bound > 0) || o.drift_retries < 0 ||
+      !(o.size_uniformity >= 0 && o.size_uniformity <= 1) || !(o.face_attraction >= 0) ||
       !(o.fit_retry >= 0) || !(o.centre_weight >= 0))
     throw core::InputError("optimize: option out of range");
   core::check_indices(mesh);
@@ -356,8 +379,10 @@ void untangle_phase(const Optimization& w, PhaseReport& report) {
     uo.stall_iterations = 30;
     const solve::UntangleResult r = run(w, uo, true, w.o.face_attraction);
     add(report, r);
-    core::logger().info("optimize: untangling {} iterations, {} -> {} inverted elements (corners, centres, boundary lifts)", r.iterations,
-                        r.inverted_before, r.inverted_after);
+    core::logger().info(
+        "optimize: untangling {} iterations, {} -> {} inverted elements (corners, centres, "
+        "boundary lifts)",
+        r.iterations, r.inverted_before, r.inverted_after);
   }
 }
 
@@ -388,11 +413,14 @@ struct Best {
   std::vector<Vec3> points;
 };
 
-Best best_of(const core::HexMesh& mesh) { return {summary(mesh, true), inverted_jacobians(mesh), mesh.points}; }
+Best best_of(const core::HexMesh& mesh) {
+  return {summary(mesh, true), inverted_jacobians(mesh), mesh.points};
+}
 
 //! Heavier weights on the worst hexes (those within 0.1 of the minimum, at least 1%), so that
 //! the next round raises the minimum.
-void weigh_worst_hexes(const quality::ScaledJacobianSummary& best, std::vector<double>& multiplier) {
+void weigh_worst_hexes(const quality::ScaledJacobianSummary& best,
+                       std::vector<double>& multiplier) {
   std::vector<double> sorted = best.values;
   const std::size_t k = std::min(sorted.size() - 1, sorted.size() / 100);
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(k), sorted.end());
@@ -402,7 +430,8 @@ void weigh_worst_hexes(const quality::ScaledJacobianSummary& best, std::vector<d
 }
 
 //! The quality rounds from the best points (multipliers from 1), keeping the best state.
-void quality_rounds(Optimization& w, const Start& start, double face_weight, Best& best, OptimizeResult& res) {
+void quality_rounds(Optimization& w, const Start& start, double face_weight, Best& best,
+                    OptimizeResult& res) {
   std::fill(w.multiplier.begin(), w.multiplier.end(), 1.0);
   for (int round = 0; round < w.o.quality_rounds; ++round) {
     if (round > 0) weigh_worst_hexes(best.summary, w.multiplier);
@@ -412,11 +441,12 @@ void quality_rounds(Optimization& w, const Start& start, double face_weight, Bes
     add(res.quality, r);
     const quality::ScaledJacobianSummary s = summary(w.mesh, true);
     const int inv = inverted_jacobians(w.mesh);
-    const bool better = inv < best.inverted ||
-                        (inv == best.inverted && inv > 0 && s.min > best.summary.min) ||
-                        (inv == 0 && best.inverted == 0 && s.min > best.summary.min && s.average >= start.average);
-    core::logger().info("optimize: quality round {}: {} iterations, mSJ {:.4f} aSJ {:.4f} inverted Jacobians {}{}",
-                        round, r.iterations, s.min, s.average, inv, better ? "" : " (not kept)");
+    const bool better =
+        inv < best.inverted || (inv == best.inverted && inv > 0 && s.min > best.summary.min) ||
+        (inv == 0 && best.inverted == 0 && s.min > best.summary.min && s.average >= start.average);
+    core::logger().info(
+        "optimize: quality round {}: {} iterations, mSJ {:.4f} aSJ {:.4f} inverted Jacobians {}{}",
+        round, r.iterations, s.min, s.average, inv, better ? "" : " (not kept)");
     if (better) {
       best.summary = s;
       best.inverted = inv;
@@ -451,7 +481,8 @@ double drift_retries(Optimization& w, const Start& start, Best& best, OptimizeRe
     for (std::size_t k : off) w.pb.stiffness[k] *= 16.0;
     w.pb.set_weights(mesh, w.size, o.surface_weight);
     mesh.points = start.points;
-    const solve::UntangleOptions uo = quality_options(o, o.quality_iterations * std::max(1, o.quality_rounds));
+    const solve::UntangleOptions uo =
+        quality_options(o, o.quality_iterations * std::max(1, o.quality_rounds));
     const solve::UntangleResult r = run(w, uo, false, o.face_attraction);
     add(res.quality, r);
     if (inverted_jacobians(mesh) > 0) {  // never trade validity for the surface
@@ -462,13 +493,18 @@ double drift_retries(Optimization& w, const Start& start, Best& best, OptimizeRe
     if (o.face_attraction <= 0) w.pb.snap(mesh, s.min);
     const double h = w.hausdorff();
     if (!(h < best_hausdorff)) {
-      core::logger().info("optimize: stiffer attraction on {} drifted vertices did not lower the Hausdorff distance "
-                          "({:.3f} %); not kept", off.size(), 100 * h);
+      core::logger().info(
+          "optimize: stiffer attraction on {} drifted vertices did not lower the Hausdorff "
+          "distance "
+          "({:.3f} %); not kept",
+          off.size(), 100 * h);
       mesh.points = best.points;
       break;
     }
-    core::logger().info("optimize: Hausdorff {:.3f} % above the bound; {} drifted boundary vertices stiffened: "
-                        "{:.3f} %, mSJ {:.4f}", 100 * best_hausdorff, off.size(), 100 * h, s.min);
+    core::logger().info(
+        "optimize: Hausdorff {:.3f} % above the bound; {} drifted boundary vertices stiffened: "
+        "{:.3f} %, mSJ {:.4f}",
+        100 * best_hausdorff, off.size(), 100 * h, s.min);
     best.summary = s;
     best_hausdorff = h;
     best.points = mesh.points;
@@ -482,10 +518,13 @@ double drift_retries(Optimization& w, const Start& start, Best& best, OptimizeRe
 //! mesh has no edge for. Run the rounds again from their start with the quad centres attracted
 //! too (face_attraction.h): the boundary then fits the surface instead of interpolating it.
 //! Kept only when it lowers the Hausdorff distance (best_hausdorff, 0 when not measured yet).
-void fit_retry(Optimization& w, const Start& start, double best_hausdorff, Best& best, OptimizeResult& res) {
+void fit_retry(Optimization& w, const Start& start, double best_hausdorff, Best& best,
+               OptimizeResult& res) {
   const OptimizeOptions& o = w.o;
   core::HexMesh& mesh = w.mesh;
-  if (!(o.fit_retry > 0 && o.face_attraction <= 0 && start.inverted == 0 && inverted_jacobians(mesh) == 0)) return;
+  if (!(o.fit_retry > 0 && o.face_attraction <= 0 && start.inverted == 0 &&
+        inverted_jacobians(mesh) == 0))
+    return;
   if (best_hausdorff <= 0) best_hausdorff = w.hausdorff();
   if (best_hausdorff <= o.hausdorff_bound) return;
   const Best kept{best.summary, best.inverted, mesh.points};
@@ -494,12 +533,16 @@ void fit_retry(Optimization& w, const Start& start, double best_hausdorff, Best&
   quality_rounds(w, start, o.fit_retry, best, res);
   const double h = w.hausdorff();
   if (best.inverted == 0 && h < best_hausdorff) {
-    core::logger().info("optimize: Hausdorff {:.3f} % above the bound; quad centres attracted too: {:.3f} %, "
-                        "mSJ {:.4f}", 100 * best_hausdorff, 100 * h, best.summary.min);
+    core::logger().info(
+        "optimize: Hausdorff {:.3f} % above the bound; quad centres attracted too: {:.3f} %, "
+        "mSJ {:.4f}",
+        100 * best_hausdorff, 100 * h, best.summary.min);
     res.fit_retry = true;
   } else {
-    core::logger().info("optimize: attracting the quad centres did not lower the Hausdorff distance ({:.3f} %); "
-                        "not kept", 100 * h);
+    core::logger().info(
+        "optimize: attracting the quad centres did not lower the Hausdorff distance ({:.3f} %); "
+        "not kept",
+        100 * h);
     mesh.points = kept.points;
     best = kept;
   }
@@ -507,7 +550,8 @@ void fit_retry(Optimization& w, const Start& start, double best_hausdorff, Best&
 
 }  // namespace
 
-OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& target_mesh, const OptimizeOptions& o) {
+OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& target_mesh,
+                                 const OptimizeOptions& o) {
   const auto t0 = Clock::now();
   check_input(mesh, o);
 
@@ -529,11 +573,14 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   res.boundary_vertices = pb.roles.surface + pb.roles.feature;
   res.feature_vertices = pb.roles.feature;
   res.corner_vertices = pb.roles.corners;
-  Optimization w{mesh, target_mesh, pb, size, lengths, centre, std::vector<double>(mesh.cells.size(), 1.0), o};
+  Optimization w{
+      mesh, target_mesh, pb, size, lengths, centre, std::vector<double>(mesh.cells.size(), 1.0), o};
   res.setup.seconds = seconds_since(t0);
-  core::logger().info("optimize: {} hexes, {} surface, {} feature, {} corner vertices; target {} sharp edges, {} corners",
-                      mesh.num_cells(), pb.roles.surface, pb.roles.feature, pb.roles.corners,
-                      res.target_feature_edges, res.target_corners);
+  core::logger().info(
+      "optimize: {} hexes, {} surface, {} feature, {} corner vertices; target {} sharp edges, {} "
+      "corners",
+      mesh.num_cells(), pb.roles.surface, pb.roles.feature, pb.roles.corners,
+      res.target_feature_edges, res.target_corners);
 
   // Phase 1: untangle.
   const auto t1 = Clock::now();
