@@ -223,8 +223,11 @@ Capabilities capabilities(Format f) {
   switch (f) {
     case Format::Obj:
     case Format::Off:
+      c.triangles = c.quads = true;
+      break;
     case Format::Ply:
       c.triangles = c.quads = true;
+      c.point_data = c.cell_data = true;
       break;
     case Format::Stl:
       c.triangles = true;

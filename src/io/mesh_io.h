@@ -9,7 +9,7 @@
 //! | .obj  | tri, quad (polygons: fan)       | -                   | -           | v/vt/vn refs, neg. idx |
 //! | .off  | tri, quad (polygons: fan)       | -                   | -           | COFF/NOFF/STOFF read   |
 //! | .stl  | tri (quads split on write)      | -                   | -           | ASCII/binary, float    |
-//! | .ply  | tri, quad (polygons: fan)       | -                   | -           | ASCII/binary LE (R BE) |
+//! | .ply  | tri, quad (polygons: fan)       | -                   | point, cell | ASCII/binary LE (R BE) |
 //! | .mesh | edge, tri, quad, tet, hex       | element + vertex    | -           | MEDIT, version 1..4 R  |
 //! | .vtk  | tri, quad, tet, hex             | as "label" data     | point, cell | legacy ASCII 2.0-4.2 R |
 //! | .msh  | edge, tri, quad, tet, hex       | physical tags       | -           | Gmsh 4.1 ASCII         |
@@ -17,6 +17,9 @@
 //! Vertex orders are those of core/elements.h in every format (they agree). Coordinates are
 //! written in the shortest decimal form that reads back to the same double (STL: float).
 //! Polygons of more than four vertices are fan-triangulated from their first vertex.
+//! PLY fields are vertex and face properties; fields named red, green, blue (alpha) with
+//! integer values in 0..255 are written as uchar, the colour convention of MeshLab and ParaView.
+//! 3MF assemblies of parts have their own functions, in three_mf.h.
 //! Writing refuses elements a format cannot hold (tets to .obj) with core::InputError before
 //! any file is created, and drops attributes it cannot hold with a logged warning.
 //!
