@@ -71,6 +71,9 @@ nlohmann::json foldover_json(const optimize::FoldoverReport& check);
 //! Add `--sizing uniform|map` (mesh/grid.h) to a subcommand.
 CLI::Option* add_sizing_option(CLI::App& sub, mesh::GridSizing& sizing, const std::string& help);
 
+//! Add `--chamber X Y Z` (fabrication's build volume) to a subcommand.
+CLI::Option* add_chamber_option(CLI::App& sub, std::vector<double>& chamber);
+
 //! Hide `expert` from the subcommand's --help and add `--help-expert`, which lists them too.
 void add_expert_options(CLI::App& sub, const std::vector<CLI::Option*>& expert);
 

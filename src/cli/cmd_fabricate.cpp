@@ -1,142 +1,132 @@
-//! `polycube fabricate MODEL.mesh POLYCUBE.mesh -o DIR [--solid SURFACE] [--no-merge]`: cut a
-//! solid into parts along the boxes of its (simplified) polycube map (thesis ch. 6): box
-//! partition, merging, cut plan, model-space planes, exact cuts; one STL per part and parts.json.
+//! `polycube fabricate INPUT [POLYCUBE] -o DIR [--chamber X Y Z] [--no-merge]`: cut a solid into
+//! parts along the boxes of its simplified polycube map (thesis ch. 6). From a map
+//! (`model.mesh polycube.mesh`) the parts go straight into DIR; from a surface or tet mesh the
+//! chain's own stages build the map first (construct, simplify: `polycube run`'s, without the
+//! hex meshing), into DIR/construct, DIR/simplify and the parts into DIR/parts.
 #include "cli/app.h"
 #include "core/errors.h"
 #include "core/topology.h"
-#include "fabricate/box_partition.h"
-#include "fabricate/cut_plan.h"
-#include "fabricate/cut_planes.h"
-#include "fabricate/parts.h"
+#include "fabricate/decompose.h"
 #include "io/mesh_io.h"
 #include "io/polycube_map_io.h"
+#include "pipeline/parts_output.h"
+#include "pipeline/pipeline.h"
 #include "structure/validate.h"
 
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace polycube::cli {
 
 namespace {
 
 struct FabricateOptions {
-  std::string model;
-  std::string polycube;
+  std::string input;     //!< model.mesh of a map, or a surface / tet mesh
+  std::string polycube;  //!< polycube.mesh of the map (empty: input is a shape)
   std::string output;
   std::string solid;  //!< the solid's surface; default: the boundary of the map's model tets
+  std::vector<double> chamber;
   bool no_merge = false;
   bool keep_failed = false;
+  fabricate::DecomposeOptions decompose;
 };
 
-//! Why a part fails the checks, or "" when it passes.
-std::string part_problem(const fabricate::Part& p) {
-  if (p.mesh.cells.empty()) return "empty (its box's material went to a neighbour)";
-  if (!p.closed) return "not closed";
-  if (!p.outward) return "not outward";
-  if (p.self_intersecting) return "self-intersecting";
-  return "";
-}
-
-void run_fabricate(const FabricateOptions& o) {
-  const core::PolycubeMap map = io::read_polycube_map(o.model, o.polycube);
+//! From a map: decompose, check, write into the output folder.
+void fabricate_map(const FabricateOptions& o) {
+  const core::PolycubeMap map = io::read_polycube_map(o.input, o.polycube);
   structure::validate_map(map);
   const core::TriMesh solid =
       o.solid.empty() ? core::boundary(map.model_mesh()).surface : read_target_surface(o.solid);
+  const fabricate::Decomposition d = fabricate::decompose(map, solid, o.decompose);
+  if (!o.keep_failed) pipeline::check_parts(d, o.decompose);
+  const auto files = pipeline::write_parts(o.output, d, o.decompose);
+  print_result(pipeline::parts_json(d, o.decompose),
+               pipeline::parts_table(d) + fmt::format("wrote {} files to {} (parts.3mf opens the "
+                                                      "assembly in a slicer, exploded.vtk in ParaView)\n",
+                                                      files.size(), o.output));
+}
 
-  const fabricate::OccupancyGrid grid = fabricate::occupancy_grid(map);
-  fabricate::BoxPartition partition = fabricate::partition_boxes(grid);
-  const std::size_t boxes = partition.boxes.size();
-  if (!o.no_merge) fabricate::merge_boxes(grid, partition);
-  const fabricate::CutPlan plan = fabricate::plan_cuts(grid, partition);
-  const std::vector<fabricate::CutPlane> planes = fabricate::fit_cut_planes(map, grid, plan);
-  const fabricate::Parts parts =
-      fabricate::cut_parts(solid, plan, planes, fabricate::box_lookup(map, grid, plan.partition));
-
-  int failing = 0;
-  std::string first_problem;
-  for (const auto& p : parts.parts) {
-    const std::string why = part_problem(p);
-    if (!why.empty() && failing++ == 0)
-      first_problem = fmt::format("part of box {}: {}", p.box, why);
+//! From a shape: run's stages input, construct, simplify, fabricate.
+void fabricate_shape(const FabricateOptions& o) {
+  pipeline::RunOptions run;
+  run.hexmesh = false;
+  run.fabricate = true;
+  run.fabricate_options = o.decompose;
+  run.construct.on_attempt = attempt_progress();
+  const bool show = !global_options().quiet && !global_options().json;
+  run.on_stage = [show](int i, int n, const std::string& name) {
+    if (show) std::fprintf(stderr, "[%d/%d] %s\n", i, n, name.c_str());
+  };
+  const pipeline::RunResult r = pipeline::run_pipeline(o.input, o.output, run);
+  if (!r.ok()) {
+    const std::string msg = fmt::format("stage {} failed: {} (earlier results are in {})",
+                                        r.failed_stage, r.failure, o.output);
+    if (r.bad_input) throw core::InputError(msg);
+    throw core::GeometryError(msg);
   }
-  if (failing > 0 && !o.keep_failed)
-    throw core::GeometryError(
-        fmt::format("{} of {} parts fail the checks ({}); nothing written "
-                    "(--keep-failed writes them anyway)",
-                    failing, parts.parts.size(), first_problem));
+  const std::filesystem::path json = std::filesystem::path(o.output) / "parts" / "parts.json";
+  std::ifstream in(json);
+  print_result(nlohmann::json::parse(in, nullptr, false),
+               fmt::format("{} boxes, {} parts in {:.1f} s; wrote {}/parts (parts.3mf, "
+                           "part_NN.stl, exploded.vtk, parts.json)\n",
+                           r.part_boxes, r.parts, r.total_seconds, o.output));
+}
 
-  std::filesystem::create_directories(o.output);
-  nlohmann::json list = nlohmann::json::array();
-  std::size_t written = 0;
-  std::string text = fmt::format(
-      "{} boxes, {} after merging, {} cuts; {} parts (solid volume {:.6g}, parts {:.6g})\n", boxes,
-      plan.partition.boxes.size(), plan.cuts.size(), parts.parts.size(), parts.solid_volume,
-      parts.volume_sum);
-  text += "  part  box  triangles      volume  components  check\n";
-  for (std::size_t i = 0; i < parts.parts.size(); ++i) {
-    const fabricate::Part& p = parts.parts[i];
-    const std::string file = fmt::format("part_{:02d}.stl", i);
-    if (!p.mesh.cells.empty()) {
-      io::write_mesh(std::filesystem::path(o.output) / file, core::to_mesh_data(p.mesh));
-      ++written;
-    }
-    const std::string why = part_problem(p);
-    const fabricate::Box& b = plan.partition.boxes[static_cast<std::size_t>(p.box)];
-    list.push_back({{"file", p.mesh.cells.empty() ? "" : file},
-                    {"box", p.box},
-                    {"box_cells", {{"lo", b.lo}, {"hi", b.hi}}},
-                    {"triangles", p.mesh.num_cells()},
-                    {"volume", p.volume},
-                    {"components", p.components},
-                    {"closed", p.closed},
-                    {"outward", p.outward},
-                    {"self_intersecting", p.self_intersecting},
-                    {"ok", why.empty()}});
-    text += fmt::format("  {:4d} {:4d} {:10d} {:11.6g} {:11d}  {}\n", i, p.box, p.mesh.num_cells(),
-                        p.volume, p.components, why.empty() ? "ok" : why);
+void run_fabricate(FabricateOptions o) {
+  o.decompose.merge = !o.no_merge;
+  if (!o.chamber.empty()) o.decompose.chamber = {o.chamber[0], o.chamber[1], o.chamber[2]};
+  if (o.polycube.empty()) {
+    if (!o.solid.empty() || o.keep_failed)
+      throw core::InputError("--solid and --keep-failed apply to a map (MODEL.mesh POLYCUBE.mesh)");
+    fabricate_shape(o);
+  } else {
+    fabricate_map(o);
   }
-  nlohmann::json j = {{"boxes", boxes},
-                      {"merged_boxes", plan.partition.boxes.size()},
-                      {"cuts", plan.cuts.size()},
-                      {"pinwheel_splits", plan.split_boxes},
-                      {"solid_volume", parts.solid_volume},
-                      {"parts_volume", parts.volume_sum},
-                      {"failing_parts", failing},
-                      {"seconds", parts.seconds},
-                      {"parts", list}};
-  io::write_text_atomic(std::filesystem::path(o.output) / "parts.json", j.dump(2) + "\n");
-  text += fmt::format("wrote {} part STL files and parts.json to {}\n", written, o.output);
-  print_result(j, text);
 }
 
 }  // namespace
 
+CLI::Option* add_chamber_option(CLI::App& sub, std::vector<double>& chamber) {
+  return sub
+      .add_option("--chamber", chamber,
+                  "Build volume X Y Z (model units; the samples are in mm): parts too large to stand "
+                  "on one of their flat sides in it are split further in polycube space")
+      ->expected(3)
+      ->check(CLI::PositiveNumber);
+}
+
 void register_fabricate(CLI::App& app) {
   auto opts = std::make_shared<FabricateOptions>();
-  CLI::App* sub = app.add_subcommand("fabricate",
-                                     "Cut a solid into parts along the boxes of its polycube map "
-                                     "(thesis ch. 6): box partition at the concave "
-                                     "edges, merging, exact cuts by planes; one STL per part and "
-                                     "parts.json (work in progress: no chamber, 3MF "
-                                     "or printability checks yet)");
-  sub->add_option("model", opts->model,
-                  "Model-space tet mesh of the map (.mesh; simplify/model.mesh of run)")
+  CLI::App* sub = app.add_subcommand(
+      "fabricate",
+      "Cut a solid into parts with flat sides along the boxes of its polycube (thesis ch. 6), for "
+      "3D printing or milling in parts: box partition at the concave edges, merging, exact cuts by "
+      "planes. From a surface or tet mesh the map is built first (construct, simplify). Writes "
+      "part_NN.stl, parts.3mf (the assembly), exploded.ply/.vtk and parts.json");
+  sub->add_option("input", opts->input,
+                  "A closed surface (.obj .off .stl .ply) or tet mesh to build the map of, or the "
+                  "model-space tet mesh of a map (simplify/model.mesh of run) followed by POLYCUBE")
       ->required();
-  sub->add_option("polycube", opts->polycube, "Polycube-space tet mesh with the same tets (.mesh)")
+  sub->add_option("polycube", opts->polycube,
+                  "With a map: its polycube-space tet mesh with the same tets (.mesh)");
+  sub->add_option("-o,--output", opts->output,
+                  "Output folder (from a map: the part files; from a shape: construct/, simplify/, "
+                  "parts/)")
       ->required();
-  sub->add_option("-o,--output", opts->output, "Output folder for part_NN.stl and parts.json")
-      ->required();
-  sub->add_option(
-      "--solid", opts->solid,
-      "The solid's surface to cut (default: the boundary of the map's model tets; give the input "
-      "surface to keep it exactly)");
+  add_chamber_option(*sub, opts->chamber);
   sub->add_flag("--no-merge", opts->no_merge,
                 "Keep the thesis's partition: no merging of boxes whose union is a box");
+  sub->add_option(
+      "--solid", opts->solid,
+      "With a map: the solid's surface to cut (default: the boundary of the map's model tets; give "
+      "the input surface to keep it exactly)");
   sub->add_flag("--keep-failed", opts->keep_failed,
-                "Write the parts even when some fail the checks");
+                "With a map: write the parts even when some fail the checks or the chamber");
   sub->callback([opts] { run_fabricate(*opts); });
 }
 

@@ -30,6 +30,7 @@ struct RunCliOptions {
   std::string output_dir;
   bool no_simplify = false;
   bool no_optimize = false;
+  std::vector<double> chamber;
   pipeline::RunOptions run;
 };
 
@@ -68,6 +69,7 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
                    {"plan_seconds", r.padding_plan_seconds},
                    {"plan_optimal", r.padding_plan_optimal},
                    {"optimize_seconds", r.padding_optimize_seconds}}},
+      {"fabricate", {{"boxes", r.part_boxes}, {"parts", r.parts}, {"unfit_parts", r.unfit_parts}}},
       {"hex_domains_before", r.hex_domains_before},
       {"hex_domains_after", r.hex_domains_after},
       {"quad_domains_before", r.quad_domains_before},
@@ -104,6 +106,8 @@ std::string summary_table(const pipeline::RunResult& r) {
     else if (s.name == "simplify")
       what = fmt::format("{}: #D {} -> {}, #dom {} -> {}", r.simplify_step, r.hex_domains_before,
                          r.hex_domains_after, r.quad_domains_before, r.quad_domains_after);
+    else if (s.name == "fabricate")
+      what = fmt::format("{} boxes, {} parts (parts/parts.3mf, parts/exploded.vtk)", r.part_boxes, r.parts);
     else if (s.name == "hexmesh")
       what = fmt::format("scale {:.4g}: {} hexes, {} quads; mSJ {} aSJ {}, {} inverted", r.grid_scale, r.hexes,
                          r.quads, figure(r.msj_gridded), figure(r.asj_gridded), count(r.inverted_gridded));
@@ -130,6 +134,10 @@ void run_run(RunCliOptions o) {
   namespace fs = std::filesystem;
   o.run.simplify = !o.no_simplify;
   o.run.optimize = !o.no_optimize;
+  if (!o.chamber.empty()) {
+    if (!o.run.fabricate) throw core::InputError("--chamber needs --fabricate");
+    o.run.fabricate_options.chamber = {o.chamber[0], o.chamber[1], o.chamber[2]};
+  }
   const bool show = !global_options().quiet && !global_options().json;
   o.run.construct.on_attempt = attempt_progress();
   o.run.on_stage = [show](int i, int n, const std::string& name) {
@@ -185,6 +193,10 @@ void register_run(CLI::App& app) {
                                                       {"selective", padding::PaddingMode::Selective}},
           CLI::ignore_case))
       ->default_str("none");
+  sub->add_flag("--fabricate", opts->run.fabricate,
+                "Also cut the input solid into parts along the simplified map (thesis ch. 6): "
+                "parts/ with part_NN.stl, parts.3mf, exploded.ply/.vtk, parts.json");
+  add_chamber_option(*sub, opts->chamber);
   auto& c = opts->run.construct;
   sub->add_option("--compactness", c.labeling.compactness,
                   "Compactness vs fidelity trade-off of the labeling (larger: fewer, smoother charts)")
@@ -207,7 +219,7 @@ void register_run(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   // Fault injection for the tests (pipeline.h, RunOptions::inject_failure): hidden from --help.
   sub->add_option("--inject-failure", opts->run.inject_failure, "Testing only: make this stage fail at its start")
-      ->check(CLI::IsMember({"input", "construct", "simplify", "hexmesh", "optimize", "quality", "simplify-step-1",
+      ->check(CLI::IsMember({"input", "construct", "simplify", "fabricate", "hexmesh", "optimize", "quality", "simplify-step-1",
                              "simplify-step-2", "simplify-step-3", "optimize-step-1", "optimize-step-2",
                              "optimize-step-3", "optimize-step-4", "pad"}))
       ->group("");

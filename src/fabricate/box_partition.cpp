@@ -211,6 +211,40 @@ bool OccupancyGrid::in(std::array<int, 3> c) const {
   return inside[index(c)] != 0;
 }
 
+int insert_plane(OccupancyGrid& g, int axis, double coordinate, double tolerance) {
+  auto& pl = g.planes[axis];
+  const auto it = std::lower_bound(pl.begin(), pl.end(), coordinate - tolerance);
+  if (it != pl.end() && *it <= coordinate + tolerance) return static_cast<int>(it - pl.begin());
+  const int k = static_cast<int>(it - pl.begin());  // the new plane's index
+  const OccupancyGrid old = g;
+  pl.insert(it, coordinate);
+  g.inside.assign(static_cast<std::size_t>(g.cells(0)) * g.cells(1) * g.cells(2), 0);
+  Cell c{};
+  for (c[2] = 0; c[2] < g.cells(2); ++c[2])
+    for (c[1] = 0; c[1] < g.cells(1); ++c[1])
+      for (c[0] = 0; c[0] < g.cells(0); ++c[0]) {
+        // Cells past the new plane were one index lower, so the two halves of the cell it
+        // crosses both come from that cell; a plane beyond the grid adds a layer outside.
+        Cell from = c;
+        if (from[axis] >= k) --from[axis];
+        g.inside[g.index(c)] = old.in(from) ? 1 : 0;
+      }
+  return k;
+}
+
+void split_boxes(const OccupancyGrid& g, BoxPartition& p, int axis, int plane) {
+  const std::size_t n = p.boxes.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    Box& b = p.boxes[i];
+    if (!(b.lo[axis] < plane && plane < b.hi[axis])) continue;
+    Box upper = b;
+    upper.lo[axis] = plane;
+    b.hi[axis] = plane;
+    p.boxes.push_back(upper);
+  }
+  index_boxes(g, p);
+}
+
 core::Vec3 box_corner(const OccupancyGrid& grid, const Box& box, int i, int j, int k) {
   return {grid.planes[0][i ? box.hi[0] : box.lo[0]], grid.planes[1][j ? box.hi[1] : box.lo[1]],
           grid.planes[2][k ? box.hi[2] : box.lo[2]]};

@@ -77,6 +77,14 @@ void merge_boxes(const OccupancyGrid& grid, BoxPartition& partition,
 //! \throw core::InputError when the boxes do not cover the inside cells exactly once
 void index_boxes(const OccupancyGrid& grid, BoxPartition& partition);
 
+//! The grid with one more plane at `coordinate` on `axis` (cells it crosses split in two, each
+//! half inside when the cell was); the same grid when a plane lies within `tolerance` of it.
+//! Returns the plane's index.
+int insert_plane(OccupancyGrid& grid, int axis, double coordinate, double tolerance = 1e-9);
+
+//! Split every box that grid plane `plane` of `axis` crosses into its two halves, then re-index.
+void split_boxes(const OccupancyGrid& grid, BoxPartition& partition, int axis, int plane);
+
 //! Box corner (i, j, k each 0 or 1 for lo or hi) in polycube coordinates.
 core::Vec3 box_corner(const OccupancyGrid& grid, const Box& box, int i, int j, int k);
 

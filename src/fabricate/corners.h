@@ -6,10 +6,25 @@
 
 #include "core/polycube_map.h"
 #include "fabricate/box_partition.h"
+#include "mesh/tet_locator.h"
 
 #include <vector>
 
 namespace polycube::fabricate {
+
+//! Polycube-space points taken to model space through the map: the tet holding the point (or
+//! the nearest one), the same barycentric coordinates in its model-space twin.
+class ToModel {
+ public:
+  //! \param tolerance polycube-space distance within which a point counts as inside a tet
+  explicit ToModel(const core::PolycubeMap& map, double tolerance = 1e-6);
+  //! The model-space point of q; `located` says whether q was inside a tet.
+  core::Vec3 operator()(const core::Vec3& q, bool* located = nullptr) const;
+
+ private:
+  const core::PolycubeMap& map_;
+  mesh::TetLocator locator_;
+};
 
 //! Model-space corners of every box.
 struct BoxCorners {

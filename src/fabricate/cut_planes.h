@@ -8,6 +8,14 @@
 //! mapped grid vertices of all the contacts across it. The edges and corners of the parts are
 //! then the exact intersections of these planes, shared by the parts that meet there, so no
 //! pivoting is needed to keep neighbouring sides consistent.
+//!
+//! One plane for a whole cut can miss a small box: where the map's interface curves between
+//! contact patches, the least-squares plane may pass beyond a box near it, and the box's part
+//! comes out empty. So the fit keeps every box of the cut's group on its own side: the mapped
+//! centre of each box and its corners shrunk halfway towards that centre must lie on the side
+//! of the box (a convex least-squares problem in the plane's tilt and offset, solved exactly).
+//! Since every cut on the way down to a box keeps its centre on the box's side, each part holds
+//! its box's mapped centre: no part can come out empty.
 
 #include "core/polycube_map.h"
 #include "fabricate/cut_plan.h"
@@ -23,6 +31,10 @@ struct CutPlane {
   int points = 0;              //!< mapped grid vertices fitted
   double max_deviation = 0.0;  //!< largest distance of those points from the plane (model units)
   double rms_deviation = 0.0;  //!< root mean square of the distances
+  //! Tilted away from the least-squares plane to keep every box on its side (see above); 2 when
+  //! only the box centres could be kept (the shrunk corners could not all be)
+  int constrained = 0;
+  int unkept_boxes = 0;  //!< boxes whose mapped centre no plane could keep on its side
 };
 
 //! One plane per cut of the plan (same order); a separation (axis -1) gets none (points 0).

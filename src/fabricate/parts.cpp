@@ -30,6 +30,10 @@ using ExactMesh = CGAL::Surface_mesh<EK::Point_3>;
 using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Vec3 = core::Vec3;
 
+//! Distance from a cut plane, relative to the solid's size, within which a point is on it: the
+//! snap before each cut, and a flat side's vertices after rounding.
+constexpr double kOnPlane = 1e-9;
+
 ExactMesh to_exact(const core::TriMesh& m) {
   ExactMesh out;
   std::vector<ExactMesh::Vertex_index> v;
@@ -110,7 +114,7 @@ void snap_to_plane(ExactMesh& m, const CutPlane& plane, double eps) {
 ExactMesh clip_side(const ExactMesh& piece, const CutPlane& plane, const Vec3& centre, double R,
                     bool above) {
   ExactMesh a = piece;
-  snap_to_plane(a, plane, 1e-9 * R);
+  snap_to_plane(a, plane, kOnPlane * R);
   ExactMesh box = half_box(plane, centre, R, above);
   ExactMesh out;
   if (!PMP::corefine_and_compute_intersection(a, box, out))
@@ -143,6 +147,50 @@ int owner(const ExactMesh& c, const BoxOf& box_of) {
       count = k;
     }
   return best;
+}
+
+//! The cut planes bounding the piece of group (c, above), each with the outward normal of the
+//! piece there: the cut's own plane and those of its ancestors.
+std::vector<FlatSide> bounding_planes(const CutPlan& plan, const std::vector<CutPlane>& planes,
+                                      int c, bool above) {
+  std::vector<FlatSide> out;
+  for (; c >= 0; above = plan.cuts[c].parent_above, c = plan.cuts[c].parent)
+    if (plan.cuts[c].axis >= 0) out.push_back({c, above ? -planes[c].normal : planes[c].normal});
+  return out;
+}
+
+//! The part's triangles lying on its bounding planes (all three vertices within eps, facing the
+//! same way), grouped into flat sides; planes it does not touch are dropped.
+void find_flat_sides(Part& p, std::vector<FlatSide> candidates, const std::vector<CutPlane>& planes,
+                     double eps) {
+  p.triangle_side.assign(p.mesh.cells.size(), -1);
+  for (std::size_t t = 0; t < p.mesh.cells.size(); ++t) {
+    const auto& tri = p.mesh.cells[t];
+    const Vec3 a = p.mesh.points[tri[0]], b = p.mesh.points[tri[1]], c = p.mesh.points[tri[2]];
+    const Vec3 area_normal = 0.5 * (b - a).cross(c - a);
+    for (std::size_t s = 0; s < candidates.size(); ++s) {
+      const CutPlane& plane = planes[static_cast<std::size_t>(candidates[s].cut)];
+      const auto on = [&](const Vec3& x) { return std::abs(plane.normal.dot(x) - plane.offset) <= eps; };
+      if (on(a) && on(b) && on(c) && area_normal.dot(candidates[s].normal) > 0) {
+        p.triangle_side[t] = static_cast<int>(s);
+        candidates[s].area += area_normal.norm();
+        break;
+      }
+    }
+  }
+  // Keep the sides with area, largest first, and renumber the triangles' sides.
+  std::vector<int> order;
+  for (std::size_t s = 0; s < candidates.size(); ++s)
+    if (candidates[s].area > 0) order.push_back(static_cast<int>(s));
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int x, int y) { return candidates[x].area > candidates[y].area; });
+  std::vector<int> renumber(candidates.size(), -1);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    renumber[order[k]] = static_cast<int>(k);
+    p.sides.push_back(candidates[order[k]]);
+  }
+  for (int& s : p.triangle_side)
+    if (s >= 0) s = renumber[s];
 }
 
 Part finish(int box, const ExactMesh& piece) {
@@ -224,7 +272,10 @@ Parts cut_parts(const core::TriMesh& solid, const CutPlan& plan,
   for (std::size_t c = 0; c < plan.cuts.size(); ++c)
     for (int s = 0; s < 2; ++s) {
       const auto& group = s ? plan.cuts[c].above : plan.cuts[c].below;
-      if (group.size() == 1) out.parts.push_back(finish(group[0], sides[c][s]));
+      if (group.size() != 1) continue;
+      out.parts.push_back(finish(group[0], sides[c][s]));
+      find_flat_sides(out.parts.back(), bounding_planes(plan, planes, static_cast<int>(c), s),
+                      planes, kOnPlane * R);
     }
   std::sort(out.parts.begin(), out.parts.end(),
             [](const Part& a, const Part& b) { return a.box < b.box; });

@@ -21,6 +21,13 @@
 
 namespace polycube::fabricate {
 
+//! A flat side of a part: where it lies on one of the cut planes.
+struct FlatSide {
+  int cut = -1;                                  //!< the cut of the plan whose plane it lies on
+  core::Vec3 normal = core::Vec3::UnitX();  //!< outward unit normal
+  double area = 0.0;                             //!< model units²
+};
+
 //! One part: the solid's piece of one box.
 struct Part {
   int box = -1;                   //!< box of the plan's partition
@@ -30,6 +37,8 @@ struct Part {
   bool closed = false;            //!< no border edge
   bool outward = false;           //!< bounds a positive volume
   bool self_intersecting = true;  //!< checked with exact predicates after rounding
+  std::vector<FlatSide> sides;    //!< its faces on cut planes, largest first
+  std::vector<int> triangle_side;  //!< per triangle: index into sides, -1 on the solid's surface
 };
 
 //! All parts and what the checks found.

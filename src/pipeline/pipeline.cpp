@@ -6,6 +6,7 @@
 #include "core/log.h"
 #include "core/topology.h"
 #include "io/mesh_io.h"
+#include "pipeline/parts_output.h"
 #include "io/polycube_map_io.h"
 #include "mesh/grid.h"
 #include "optimize/foldover_check.h"
@@ -39,7 +40,8 @@ int injected_steps(const std::string& inject, const std::string& prefix) {
 }
 
 //! Every stage's name, in order (simplify and optimize can be turned off).
-constexpr const char* kStages[] = {"input", "construct", "simplify", "hexmesh", "optimize", "pad", "quality"};
+constexpr const char* kStages[] = {"input",    "construct", "simplify", "fabricate",
+                                   "hexmesh",  "optimize",  "pad",      "quality"};
 
 //! Signed volume of the map's polycube (lattice units cubed when it is integer).
 double polycube_volume(const core::PolycubeMap& map) {
@@ -212,6 +214,19 @@ std::vector<OptimizeFallback> optimize_fallbacks(int target, mesh::GridSizing si
   return out;
 }
 
+//! The fabricate stage: decompose, check, write parts/ (nothing when a part fails its checks or
+//! the chamber, so a failed stage leaves no half-made assembly).
+void fabricate_and_write(const core::PolycubeMap& map, const core::TriMesh& solid, const RunOptions& o,
+                         const std::filesystem::path& dir, RunResult& r,
+                         const std::function<void(const std::filesystem::path&)>& wrote) {
+  const fabricate::Decomposition d = fabricate::decompose(map, solid, o.fabricate_options);
+  r.part_boxes = d.boxes;
+  r.parts = static_cast<int>(d.parts.parts.size());
+  r.unfit_parts = d.unfit_parts;
+  check_parts(d, o.fabricate_options);
+  for (const auto& f : write_parts(dir, d, o.fabricate_options)) wrote(f);
+}
+
 }  // namespace
 
 double RunResult::seconds(const std::string& stage) const {
@@ -235,8 +250,10 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   fs::create_directories(out_dir, ec);
   if (ec) throw core::InputError(fmt::format("cannot create the output folder {}: {}", out_dir.string(), ec.message()));
 
-  const int count =
-      4 + (o.simplify ? 1 : 0) + (o.optimize ? 1 : 0) + (o.padding != padding::PaddingMode::None ? 1 : 0);
+  const int count = 2 + (o.simplify ? 1 : 0) + (o.fabricate ? 1 : 0) +
+                    (o.hexmesh ? 2 + (o.optimize ? 1 : 0) +
+                                     (o.padding != padding::PaddingMode::None ? 1 : 0)
+                               : 0);
   Runner run(r, o, count);
   auto wrote = [&](const fs::path& p) { r.files.push_back(p.string()); };
 
@@ -304,6 +321,14 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
       wrote(out_dir / "simplify" / "polycube.mesh");
       map = s.fit.map;
     });
+
+  // 3b. the solid cut into parts along the map's boxes (on request)
+  if (o.fabricate)
+    run.stage("fabricate", [&] { fabricate_and_write(map, in.target, o, out_dir / "parts", r, wrote); });
+  if (!o.hexmesh) {
+    r.total_seconds = clock.seconds();
+    return r;
+  }
 
   // 4. gridding at the scale nearest the target (an integer polycube is never scaled below 1,
   //    so the simplified planes stay distinct and aligned: mesh/grid.h).

@@ -19,9 +19,12 @@
 //!                                                   scaled_jacobian and block_id (ParaView)
 //!   quad.vtk                                        the surface quad mesh, cell data
 //!                                                   scaled_jacobian and patch_id
+//!   parts/                                          the solid cut into parts along the map
+//!                                                   (on request: pipeline/parts_output.h)
 //! (report.json and the summary table are the caller's: see RunResult.)
 
 #include "construct/construct.h"
+#include "fabricate/decompose.h"
 #include "mesh/grid.h"
 #include "optimize/hex_optimize.h"
 #include "padding/padding.h"
@@ -54,6 +57,12 @@ struct RunOptions {
   padding::PadOptions padding_options;
   padding::AnalysisOptions padding_analysis;    //!< selective padding's mapping analysis
   padding::SelectionOptions padding_selection;  //!< selective padding's binary problem
+  //! Mesh the map (stages hexmesh, optimize, pad, quality); false: the map only (and its parts).
+  bool hexmesh = true;
+  //! Cut the input solid into parts along the (simplified) map: stage "fabricate", right after
+  //! the simplification, writing the folder parts/.
+  bool fabricate = false;
+  fabricate::DecomposeOptions fabricate_options;
   //! Called when a stage starts: (1-based index, number of stages, name).
   std::function<void(int, int, const std::string&)> on_stage;
   //! Fault injection, for tests of the failure handling only (the hidden `--inject-failure`
@@ -115,6 +124,10 @@ struct RunResult {
   int singular_vertices_before = -1, singular_edges_before = -1;  //!< #Sv, #Se before padding
   int singular_vertices_after = -1, singular_edges_after = -1;    //!< ... after
   double padding_insert_seconds = -1, padding_optimize_seconds = -1;
+  // fabricate (on request)
+  int part_boxes = -1;                 //!< boxes of the thesis's partition
+  int parts = -1;                      //!< parts after merging and chamber splits
+  int unfit_parts = -1;                //!< parts that fit the chamber on none of their flat sides
   double msj = -2, asj = -2;           //!< final hex mesh
   int inverted = -1;                   //!< final hex mesh
   int final_domains = -1;              //!< #D of the final hex mesh
