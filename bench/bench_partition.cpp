@@ -47,7 +47,7 @@ struct Row {
   double seconds = 0;          // median: partition, merging, plan, planes
   // With a solid: the whole decomposition (-1: no solid given).
   int parts = -1, bad_parts = 0, stray = 0, rounds = 0, unfit = 0;
-  double volume_error = 0;  // |sum - solid| / solid, %
+  double volume_error = 0;                             // |sum - solid| / solid, %
   double overlap = 0, gap = 0, surface_deviation = 0;  // %, %, fraction of the diagonal
   double decompose_seconds = 0;                        // median
 };
@@ -104,7 +104,8 @@ void decomposition_figures(const core::PolycubeMap& map, const core::TriMesh& so
     r.bad_parts += (q.mesh.cells.empty() || !q.closed || !q.outward || q.self_intersecting) ? 1 : 0;
     r.stray += std::max(0, q.components - 1);
   }
-  r.volume_error = 100.0 * std::abs(d.parts.volume_sum - d.parts.solid_volume) / d.parts.solid_volume;
+  r.volume_error =
+      100.0 * std::abs(d.parts.volume_sum - d.parts.solid_volume) / d.parts.solid_volume;
   const fabricate::PartitionCheck c = fabricate::check_partition(d.parts, solid);
   r.overlap = 100.0 * c.overlap;
   r.gap = 100.0 * c.gap;
@@ -199,8 +200,8 @@ int main(int argc, char** argv) {
   for (const auto& d : dirs) {
     try {
       const auto eq = d.find('=');
-      const Row r = run(d.substr(0, eq), eq == std::string::npos ? std::string() : d.substr(eq + 1),
-                        options);
+      const Row r =
+          run(d.substr(0, eq), eq == std::string::npos ? std::string() : d.substr(eq + 1), options);
       if (json)
         out.push_back(to_json(r));
       else

@@ -45,10 +45,11 @@ void fabricate_map(const FabricateOptions& o) {
   const fabricate::Decomposition d = fabricate::decompose(map, solid, o.decompose);
   if (!o.keep_failed) pipeline::check_parts(d, o.decompose);
   const auto files = pipeline::write_parts(o.output, d, o.decompose);
-  print_result(pipeline::parts_json(d, o.decompose),
-               pipeline::parts_table(d) + fmt::format("wrote {} files to {} (parts.3mf opens the "
-                                                      "assembly in a slicer, exploded.vtk in ParaView)\n",
-                                                      files.size(), o.output));
+  print_result(
+      pipeline::parts_json(d, o.decompose),
+      pipeline::parts_table(d) + fmt::format("wrote {} files to {} (parts.3mf opens the "
+                                             "assembly in a slicer, exploded.vtk in ParaView)\n",
+                                             files.size(), o.output));
 }
 
 //! From a shape: run's stages input, construct, simplify, fabricate.
@@ -93,9 +94,10 @@ void run_fabricate(FabricateOptions o) {
 
 CLI::Option* add_chamber_option(CLI::App& sub, std::vector<double>& chamber) {
   return sub
-      .add_option("--chamber", chamber,
-                  "Build volume X Y Z (model units; the samples are in mm): parts too large to stand "
-                  "on one of their flat sides in it are split further in polycube space")
+      .add_option(
+          "--chamber", chamber,
+          "Build volume X Y Z (model units; the samples are in mm): parts too large to stand "
+          "on one of their flat sides in it are split further in polycube space")
       ->expected(3)
       ->check(CLI::PositiveNumber);
 }

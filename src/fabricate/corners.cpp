@@ -1,7 +1,6 @@
 //! Box corners mapped back to model space (see corners.h).
 #include "fabricate/corners.h"
 
-
 namespace polycube::fabricate {
 
 ToModel::ToModel(const core::PolycubeMap& map, double tolerance)
@@ -26,6 +25,15 @@ BoxCorners map_corners(const core::PolycubeMap& map, const OccupancyGrid& grid,
           to_model(box_corner(grid, b, c & 1, (c >> 1) & 1, (c >> 2) & 1), &located));
       out.not_located += located ? 0 : 1;
     }
+  return out;
+}
+
+std::vector<core::Vec3> map_centres(const ToModel& to_model, const OccupancyGrid& grid,
+                                    const BoxPartition& partition) {
+  std::vector<core::Vec3> out;
+  out.reserve(partition.boxes.size());
+  for (const Box& b : partition.boxes)
+    out.push_back(to_model(0.5 * (box_corner(grid, b, 0, 0, 0) + box_corner(grid, b, 1, 1, 1))));
   return out;
 }
 

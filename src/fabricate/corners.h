@@ -38,4 +38,8 @@ struct BoxCorners {
 BoxCorners map_corners(const core::PolycubeMap& map, const OccupancyGrid& grid,
                        const BoxPartition& partition, double tolerance = 1e-6);
 
+//! The mapped centre of every box of the partition.
+std::vector<core::Vec3> map_centres(const ToModel& to_model, const OccupancyGrid& grid,
+                                    const BoxPartition& partition);
+
 }  // namespace polycube::fabricate

@@ -101,25 +101,31 @@ bool separate(const BoxPartition& p, const std::vector<int>& group, Cut& cut) {
 void plan_group(const OccupancyGrid& g, CutPlan& plan, std::vector<int> group, int parent,
                 bool parent_above) {
   if (group.size() < 2) return;
-  Cut apart;
-  apart.parent = parent;
-  apart.parent_above = parent_above;
-  if (separate(plan.partition, group, apart)) {
-    const int id = static_cast<int>(plan.cuts.size());
-    plan.cuts.push_back(apart);
-    plan_group(g, plan, apart.below, id, false);
-    plan_group(g, plan, apart.above, id, true);
-    return;
-  }
   std::vector<Candidate> cand = candidates(g, plan.partition, group);
-  if (cand.empty())
-    throw core::InputError("cut plan: a group of several boxes has no plane between them");
   // Free planes first, largest seam first; else the plane crossing fewest boxes.
   const auto better = [](const Candidate& x, const Candidate& y) {
     if (x.crossed != y.crossed) return x.crossed < y.crossed;
     if (x.area != y.area) return x.area > y.area;
     return std::make_pair(x.axis, x.plane) < std::make_pair(y.axis, y.plane);
   };
+  // A group whose boxes do not touch is cut too when a free plane lies between them (the arms
+  // of a U): in model space the cuts above it may have left its pieces joined by a sliver, which
+  // a separation by components would hand whole to one side. Without a free plane, it is
+  // separated into its connected parts.
+  Cut apart;
+  apart.parent = parent;
+  apart.parent_above = parent_above;
+  const bool free_plane =
+      !cand.empty() && std::min_element(cand.begin(), cand.end(), better)->crossed == 0;
+  if (!free_plane && separate(plan.partition, group, apart)) {
+    const int id = static_cast<int>(plan.cuts.size());
+    plan.cuts.push_back(apart);
+    plan_group(g, plan, apart.below, id, false);
+    plan_group(g, plan, apart.above, id, true);
+    return;
+  }
+  if (cand.empty())
+    throw core::InputError("cut plan: a group of several boxes has no plane between them");
   const Candidate best = *std::min_element(cand.begin(), cand.end(), better);
   if (best.crossed > 0) {
     plan.split_boxes += split_crossed(plan.partition, plan.cuts, group, best.axis, best.plane);

@@ -16,9 +16,11 @@
 
 namespace polycube::fabricate {
 
-//! One guillotine cut of a group of boxes. A group whose boxes do not all touch (the arms of a U
-//! once its base is cut off) is instead separated into its connected parts: axis -1, no plane,
-//! since in model space its piece is already in separate components.
+//! One guillotine cut of a group of boxes. A group whose boxes do not all touch and that no free
+//! plane divides is instead separated into its connected parts: axis -1, no plane, since in
+//! model space its piece is then in separate components. (Where a free plane exists, as between
+//! the arms of a U once its base is cut off, the group is cut by it like any other: its cut has
+//! no contacts.)
 struct Cut {
   int axis = 0;                   //!< normal axis of the polycube plane; -1: a separation
   int plane = 0;                  //!< grid plane index along axis

@@ -49,6 +49,34 @@ double extent(const std::vector<Vec3>& p) {
   return (hi - lo).norm();
 }
 
+//! The grid vertices of the polycube's section by a grid plane (those with an inside cell around
+//! them): a cut without contacts (between the arms of a U) follows the map through these.
+std::vector<Vec3> section_vertices(const OccupancyGrid& g, int axis, int plane) {
+  std::vector<Vec3> out;
+  const int e1 = (axis + 1) % 3, e2 = (axis + 2) % 3;
+  std::array<int, 3> v{};
+  v[axis] = plane;
+  for (v[e2] = 0; v[e2] <= g.cells(e2); ++v[e2])
+    for (v[e1] = 0; v[e1] <= g.cells(e1); ++v[e1]) {
+      bool inside = false;
+      for (int k = 0; k < 8 && !inside; ++k) {
+        std::array<int, 3> c{};
+        for (int a = 0; a < 3; ++a) c[a] = v[a] - ((k >> a) & 1);
+        inside = g.in(c);
+      }
+      if (inside) out.emplace_back(g.planes[0][v[0]], g.planes[1][v[1]], g.planes[2][v[2]]);
+    }
+  return out;
+}
+
+//! Mean of the mapped centres of the boxes.
+Vec3 mean_centre(const ToModel& to_model, const OccupancyGrid& g, const BoxPartition& p,
+                 const std::vector<int>& boxes) {
+  Vec3 sum = Vec3::Zero();
+  for (int b : boxes) sum += to_model(box_centre(g, p.boxes[static_cast<std::size_t>(b)]));
+  return sum / static_cast<double>(boxes.size());
+}
+
 CutPlane least_squares_plane(const std::vector<Vec3>& p) {
   Vec3 centroid = Vec3::Zero();
   for (const Vec3& x : p) centroid += x;
@@ -69,8 +97,8 @@ struct SidePoints {
   std::vector<Vec3> below, above;
 };
 
-SidePoints side_points(const ToModel& to_model, const OccupancyGrid& g, const BoxPartition& p, const Cut& cut,
-                       double shrink) {
+SidePoints side_points(const ToModel& to_model, const OccupancyGrid& g, const BoxPartition& p,
+                       const Cut& cut, double shrink) {
   SidePoints out;
   for (int s = 0; s < 2; ++s)
     for (int b : s ? cut.above : cut.below) {
@@ -215,22 +243,23 @@ std::vector<CutPlane> fit_cut_planes(const core::PolycubeMap& map, const Occupan
       continue;
     }
     std::vector<Vec3> points;
-    for (const Vec3& q : contact_vertices(grid, cut)) points.push_back(to_model(q));
+    for (const Vec3& q : cut.contacts.empty() ? section_vertices(grid, cut.axis, cut.plane)
+                                              : contact_vertices(grid, cut))
+      points.push_back(to_model(q));
     if (points.size() < 3)
       throw core::GeometryError(fmt::format("cut {}: fewer than 3 points to fit a plane", c));
     CutPlane plane = least_squares_plane(points);
     // Orientation: from the below side to the above side, as the map carries the polycube axis.
-    const Contact& k = cut.contacts.front();
-    const Vec3 across = to_model(box_centre(grid, plan.partition.boxes[k.boxes[1]])) -
-                        to_model(box_centre(grid, plan.partition.boxes[k.boxes[0]]));
+    const Vec3 across = mean_centre(to_model, grid, plan.partition, cut.above) -
+                        mean_centre(to_model, grid, plan.partition, cut.below);
     if (plane.normal.dot(across) < 0) {
       plane.normal = -plane.normal;
       plane.offset = -plane.offset;
     }
     const double margin = 1e-4 * extent(points);
-    keep_boxes_on_their_sides(
-        plane, points, side_points(to_model, grid, plan.partition, cut, kShrink),
-        side_points(to_model, grid, plan.partition, cut, 0.0), margin);
+    keep_boxes_on_their_sides(plane, points,
+                              side_points(to_model, grid, plan.partition, cut, kShrink),
+                              side_points(to_model, grid, plan.partition, cut, 0.0), margin);
     measure(plane, points);
     planes.push_back(plane);
   }

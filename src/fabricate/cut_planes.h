@@ -5,9 +5,10 @@
 //! The thesis flattens each box side separately (a queue of sides, each pivoting on the edges of
 //! sides flattened before it) because its parts are built side by side. Here a cut splits a whole
 //! piece of the solid at once, so each cut needs one plane: the least-squares plane of the
-//! mapped grid vertices of all the contacts across it. The edges and corners of the parts are
-//! then the exact intersections of these planes, shared by the parts that meet there, so no
-//! pivoting is needed to keep neighbouring sides consistent.
+//! mapped grid vertices of all the contacts across it (a cut without contacts, between boxes
+//! that do not touch: of the polycube's whole section by its plane). The edges and corners of the
+//! parts are then the exact intersections of these planes, shared by the parts that meet there, so
+//! no pivoting is needed to keep neighbouring sides consistent.
 //!
 //! One plane for a whole cut can miss a small box: where the map's interface curves between
 //! contact patches, the least-squares plane may pass beyond a box near it, and the box's part

@@ -46,8 +46,7 @@ std::vector<Vec3> mapped_lattice(const ToModel& to_model, const Extent& e) {
 std::array<Vec3, 3> mapped_axes(const std::vector<Vec3>& lattice) {
   const std::array<std::pair<int, int>, 3> faces{{{12, 14}, {10, 16}, {4, 22}}};
   std::array<Vec3, 3> out;
-  for (int a = 0; a < 3; ++a)
-    out[a] = lattice[faces[a].second] - lattice[faces[a].first];
+  for (int a = 0; a < 3; ++a) out[a] = lattice[faces[a].second] - lattice[faces[a].first];
   return out;
 }
 
@@ -76,8 +75,8 @@ Round decompose_grid(const core::PolycubeMap& map, const core::TriMesh& solid,
   BoxPartition partition = partition_boxes(grid);
   for (const auto& [axis, coordinate] : forced) {
     const auto& pl = grid.planes[axis];
-    const int k = static_cast<int>(std::lower_bound(pl.begin(), pl.end(), coordinate - 1e-9) -
-                                   pl.begin());
+    const int k =
+        static_cast<int>(std::lower_bound(pl.begin(), pl.end(), coordinate - 1e-9) - pl.begin());
     split_boxes(grid, partition, axis, k);
   }
   if (merge) merge_boxes(grid, partition, fits);
@@ -85,7 +84,8 @@ Round decompose_grid(const core::PolycubeMap& map, const core::TriMesh& solid,
   r.plan = plan_cuts(grid, partition);
   r.planes = fit_cut_planes(map, grid, r.plan);
   r.partition_seconds = clock.seconds();
-  r.parts = cut_parts(solid, r.plan, r.planes, box_lookup(map, grid, r.plan.partition));
+  r.parts = cut_parts(solid, r.plan, r.planes, box_lookup(map, grid, r.plan.partition),
+                      map_centres(ToModel(map), grid, r.plan.partition));
   r.cut_seconds = r.parts.seconds;
   return r;
 }
@@ -132,9 +132,9 @@ Decomposition decompose(const core::PolycubeMap& map, const core::TriMesh& solid
       const std::vector<Vec3> lattice = mapped_lattice(to_model, e);
       return fitting_base(lattice, box_bases(mapped_axes(lattice)), options.chamber) >= 0;
     };
-    Round r = decompose_grid(map, solid, d.grid, forced, options.merge,
-                             options.chamber.limited() ? std::function<bool(const Box&)>(fits)
-                                                       : nullptr);
+    Round r =
+        decompose_grid(map, solid, d.grid, forced, options.merge,
+                       options.chamber.limited() ? std::function<bool(const Box&)>(fits) : nullptr);
     d.base = choose_bases(r, d.grid, to_model, options.chamber);
     d.plan = std::move(r.plan);
     d.planes = std::move(r.planes);

@@ -26,8 +26,8 @@
 namespace polycube::fabricate {
 
 struct DecomposeOptions {
-  bool merge = true;  //!< join boxes whose union is a box (false: the thesis's partition)
-  Chamber chamber;    //!< not limited: no splitting for size
+  bool merge = true;    //!< join boxes whose union is a box (false: the thesis's partition)
+  Chamber chamber;      //!< not limited: no splitting for size
   int max_rounds = 32;  //!< chamber rounds before giving up on the parts that still do not fit
 };
 

@@ -31,7 +31,8 @@ struct Solid {
 std::unique_ptr<Solid> make_solid(const core::TriMesh& m) {
   auto s = std::make_unique<Solid>();
   std::vector<SurfaceMesh::Vertex_index> v;
-  for (const core::Vec3& p : m.points) v.push_back(s->mesh.add_vertex(K::Point_3(p.x(), p.y(), p.z())));
+  for (const core::Vec3& p : m.points)
+    v.push_back(s->mesh.add_vertex(K::Point_3(p.x(), p.y(), p.z())));
   for (const auto& t : m.cells) s->mesh.add_face(v[t[0]], v[t[1]], v[t[2]]);
   s->inside = std::make_unique<Inside>(s->mesh);
   s->box = core::bounding_box(m.points);

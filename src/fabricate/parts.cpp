@@ -11,6 +11,7 @@
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/property_map.h>
 #include <fmt/format.h>
@@ -149,18 +150,19 @@ int owner(const ExactMesh& c, const BoxOf& box_of) {
   return best;
 }
 
-//! The cut planes bounding the piece of group (c, above), each with the outward normal of the
-//! piece there: the cut's own plane and those of its ancestors.
-std::vector<FlatSide> bounding_planes(const CutPlan& plan, const std::vector<CutPlane>& planes,
-                                      int c, bool above) {
+//! Every cut plane with both orientations: a part lies on its ancestors' planes and, where a
+//! stray component was joined to it (return_strays), on a few others.
+std::vector<FlatSide> cut_sides(const CutPlan& plan, const std::vector<CutPlane>& planes) {
   std::vector<FlatSide> out;
-  for (; c >= 0; above = plan.cuts[c].parent_above, c = plan.cuts[c].parent)
-    if (plan.cuts[c].axis >= 0) out.push_back({c, above ? -planes[c].normal : planes[c].normal});
+  for (std::size_t c = 0; c < plan.cuts.size(); ++c)
+    if (plan.cuts[c].axis >= 0)
+      for (const double sign : {1.0, -1.0})
+        out.push_back({static_cast<int>(c), sign * planes[c].normal});
   return out;
 }
 
-//! The part's triangles lying on its bounding planes (all three vertices within eps, facing the
-//! same way), grouped into flat sides; planes it does not touch are dropped.
+//! The part's triangles lying on a cut plane (all three vertices within eps, facing the same way
+//! as the candidate side), grouped into flat sides; candidates it does not touch are dropped.
 void find_flat_sides(Part& p, std::vector<FlatSide> candidates, const std::vector<CutPlane>& planes,
                      double eps) {
   p.triangle_side.assign(p.mesh.cells.size(), -1);
@@ -170,7 +172,9 @@ void find_flat_sides(Part& p, std::vector<FlatSide> candidates, const std::vecto
     const Vec3 area_normal = 0.5 * (b - a).cross(c - a);
     for (std::size_t s = 0; s < candidates.size(); ++s) {
       const CutPlane& plane = planes[static_cast<std::size_t>(candidates[s].cut)];
-      const auto on = [&](const Vec3& x) { return std::abs(plane.normal.dot(x) - plane.offset) <= eps; };
+      const auto on = [&](const Vec3& x) {
+        return std::abs(plane.normal.dot(x) - plane.offset) <= eps;
+      };
       if (on(a) && on(b) && on(c) && area_normal.dot(candidates[s].normal) > 0) {
         p.triangle_side[t] = static_cast<int>(s);
         candidates[s].area += area_normal.norm();
@@ -193,13 +197,56 @@ void find_flat_sides(Part& p, std::vector<FlatSide> candidates, const std::vecto
     if (s >= 0) s = renumber[s];
 }
 
+//! Whether the component holds the mapped centre of one of the boxes.
+bool holds_a_centre(const ExactMesh& comp, const std::vector<int>& boxes,
+                    const std::vector<Vec3>& centres) {
+  const CGAL::Side_of_triangle_mesh<ExactMesh, EK> inside(comp);
+  for (int b : boxes) {
+    const Vec3& x = centres[static_cast<std::size_t>(b)];
+    if (inside(EK::Point_3(x.x(), x.y(), x.z())) != CGAL::ON_UNBOUNDED_SIDE) return true;
+  }
+  return false;
+}
+
+//! A part may hold a sliver of another part's material: where a plane deviates from the map's
+//! interface it slices the tip of a neighbouring arm, which a later cut may leave as a separate
+//! component. Such a component (holding no centre of its part's box, its vertices mapping into
+//! another box) is joined to that box's part by an exact union: it was cut off that part by an
+//! exact plane, so the two touch along the same cut polygon and the union is one closed solid.
+//! Moving a closed component from one part to another keeps the parts a partition.
+int return_strays(std::vector<std::pair<int, ExactMesh>>& pieces, const BoxOf& box_of,
+                  const std::vector<Vec3>& centres) {
+  std::map<int, std::size_t> piece_of;
+  for (std::size_t i = 0; i < pieces.size(); ++i) piece_of[pieces[i].first] = i;
+  int moved = 0;
+  for (auto& [box, mesh] : pieces) {
+    std::vector<ExactMesh> comps = components(mesh);
+    if (comps.size() < 2) continue;
+    ExactMesh kept;
+    for (ExactMesh& comp : comps) {
+      const int b = owner(comp, box_of);
+      const auto to = piece_of.find(b);
+      ExactMesh joined;
+      if (b != box && to != piece_of.end() && !holds_a_centre(comp, {box}, centres) &&
+          PMP::corefine_and_compute_union(pieces[to->second].second, comp, joined)) {
+        pieces[to->second].second = std::move(joined);
+        ++moved;
+      } else {
+        kept.join(comp);
+      }
+    }
+    mesh = std::move(kept);
+  }
+  return moved;
+}
+
 Part finish(int box, const ExactMesh& piece) {
   Part p;
   p.box = box;
   p.mesh = to_double(piece);
   std::vector<std::size_t> component(piece.num_faces());  // num_faces counts removed ones too
-  p.components = static_cast<int>(
-      PMP::connected_components(piece, CGAL::make_property_map(component)));
+  p.components =
+      static_cast<int>(PMP::connected_components(piece, CGAL::make_property_map(component)));
   p.closed = CGAL::is_closed(piece);
   CGAL::Surface_mesh<IK::Point_3> rounded_mesh;
   std::vector<CGAL::Surface_mesh<IK::Point_3>::Vertex_index> v;
@@ -232,7 +279,8 @@ BoxOf box_lookup(const core::PolycubeMap& map, const OccupancyGrid& grid,
 }
 
 Parts cut_parts(const core::TriMesh& solid, const CutPlan& plan,
-                const std::vector<CutPlane>& planes, const BoxOf& box_of) {
+                const std::vector<CutPlane>& planes, const BoxOf& box_of,
+                const std::vector<core::Vec3>& centres) {
   const core::Stopwatch clock;
   if (planes.size() != plan.cuts.size())
     throw core::InputError(
@@ -269,14 +317,20 @@ Parts cut_parts(const core::TriMesh& solid, const CutPlan& plan,
       sides[c][above ? 1 : 0].join(comp);
     }
   }
+  // The leaves: one piece per box.
+  std::vector<std::pair<int, ExactMesh>> pieces;
   for (std::size_t c = 0; c < plan.cuts.size(); ++c)
     for (int s = 0; s < 2; ++s) {
       const auto& group = s ? plan.cuts[c].above : plan.cuts[c].below;
       if (group.size() != 1) continue;
-      out.parts.push_back(finish(group[0], sides[c][s]));
-      find_flat_sides(out.parts.back(), bounding_planes(plan, planes, static_cast<int>(c), s),
-                      planes, kOnPlane * R);
+      pieces.emplace_back(group[0], std::move(sides[c][s]));
     }
+  out.returned_strays = return_strays(pieces, box_of, centres);
+  const std::vector<FlatSide> candidates = cut_sides(plan, planes);
+  for (const auto& [box, mesh] : pieces) {
+    out.parts.push_back(finish(box, mesh));
+    find_flat_sides(out.parts.back(), candidates, planes, kOnPlane * R);
+  }
   std::sort(out.parts.begin(), out.parts.end(),
             [](const Part& a, const Part& b) { return a.box < b.box; });
   for (const Part& p : out.parts) out.volume_sum += p.volume;

@@ -23,9 +23,9 @@ namespace polycube::fabricate {
 
 //! A flat side of a part: where it lies on one of the cut planes.
 struct FlatSide {
-  int cut = -1;                                  //!< the cut of the plan whose plane it lies on
+  int cut = -1;                             //!< the cut of the plan whose plane it lies on
   core::Vec3 normal = core::Vec3::UnitX();  //!< outward unit normal
-  double area = 0.0;                             //!< model units²
+  double area = 0.0;                        //!< model units²
 };
 
 //! One part: the solid's piece of one box.
@@ -47,6 +47,7 @@ struct Parts {
   double solid_volume = 0.0;
   double volume_sum = 0.0;
   int unassigned_components = 0;  //!< components of a separation no box claimed (sent below)
+  int returned_strays = 0;        //!< stray components joined to the part whose box they map into
   double seconds = 0.0;
 };
 
@@ -59,8 +60,10 @@ BoxOf box_lookup(const core::PolycubeMap& map, const OccupancyGrid& grid,
                  const BoxPartition& partition, double tolerance = 1e-9);
 
 //! Cut the solid (a closed, outward, self-intersection-free triangle surface) along the plan.
+//! \param centres the mapped centre of every box of the plan's partition (model space)
 //! \throw core::InputError when the solid is not a closed manifold surface
 Parts cut_parts(const core::TriMesh& solid, const CutPlan& plan,
-                const std::vector<CutPlane>& planes, const BoxOf& box_of);
+                const std::vector<CutPlane>& planes, const BoxOf& box_of,
+                const std::vector<core::Vec3>& centres);
 
 }  // namespace polycube::fabricate

@@ -29,12 +29,24 @@ std::array<std::uint8_t, 3> part_colour(std::size_t i) {
   const double c = v * s, x = c * (1 - std::abs(std::fmod(h, 2.0) - 1)), m = v - c;
   std::array<double, 3> rgb{};
   switch (static_cast<int>(h)) {
-    case 0: rgb = {c, x, 0}; break;
-    case 1: rgb = {x, c, 0}; break;
-    case 2: rgb = {0, c, x}; break;
-    case 3: rgb = {0, x, c}; break;
-    case 4: rgb = {x, 0, c}; break;
-    default: rgb = {c, 0, x}; break;
+    case 0:
+      rgb = {c, x, 0};
+      break;
+    case 1:
+      rgb = {x, c, 0};
+      break;
+    case 2:
+      rgb = {0, c, x};
+      break;
+    case 3:
+      rgb = {0, x, c};
+      break;
+    case 4:
+      rgb = {x, 0, c};
+      break;
+    default:
+      rgb = {c, 0, x};
+      break;
   }
   std::array<std::uint8_t, 3> out{};
   for (int k = 0; k < 3; ++k) out[k] = static_cast<std::uint8_t>(std::lround(255 * (rgb[k] + m)));
@@ -161,7 +173,8 @@ nlohmann::json parts_json(const fabricate::Decomposition& d, const fabricate::De
           {"failing_parts", failing_parts(d)},
           {"solid_volume", d.parts.solid_volume},
           {"parts_volume", d.parts.volume_sum},
-          {"seconds", {{"partition", d.partition_seconds}, {"cuts", d.cut_seconds}, {"total", d.seconds}}},
+          {"seconds",
+           {{"partition", d.partition_seconds}, {"cuts", d.cut_seconds}, {"total", d.seconds}}},
           {"parts", list}};
 }
 
@@ -175,10 +188,10 @@ std::string parts_table(const fabricate::Decomposition& d) {
     Vec3 size = Vec3::Zero();
     if (!p.mesh.points.empty()) size = core::bounding_box(p.mesh.points).extent();
     const std::string why = part_problem(p);
-    text += fmt::format("  {:4d} {:4d} {:10d} {:11.6g}  {:8.4g} {:8.4g} {:8.4g}  {:5d}  {:>4}  {}\n", i,
-                        p.box, p.mesh.num_cells(), p.volume, size.x(), size.y(), size.z(),
-                        p.sides.size(), d.base[i] >= 0 ? std::to_string(d.base[i]) : "-",
-                        why.empty() ? "ok" : why);
+    text += fmt::format(
+        "  {:4d} {:4d} {:10d} {:11.6g}  {:8.4g} {:8.4g} {:8.4g}  {:5d}  {:>4}  {}\n", i, p.box,
+        p.mesh.num_cells(), p.volume, size.x(), size.y(), size.z(), p.sides.size(),
+        d.base[i] >= 0 ? std::to_string(d.base[i]) : "-", why.empty() ? "ok" : why);
   }
   return text;
 }

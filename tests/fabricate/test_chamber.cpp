@@ -33,7 +33,7 @@ TEST(Chamber, ABarFitsLyingDownButNotStandingOnItsEnd) {
 
 TEST(Chamber, AFootprintLongerThanTheBedFitsAlongItsDiagonal) {
   const auto bar = box_points(10, 1, 1, 0.3);  // turned: the fit must find the turn
-  const fabricate::Chamber square{8, 8, 2};  // diagonal 11.3: (10 + 1) / sqrt 2 = 7.8 <= 8
+  const fabricate::Chamber square{8, 8, 2};    // diagonal 11.3: (10 + 1) / sqrt 2 = 7.8 <= 8
   EXPECT_TRUE(fabricate::fits_standing_on(bar, -Vec3::UnitZ(), square));
   const fabricate::Chamber small{7, 7, 2};  // 7.8 > 7
   EXPECT_FALSE(fabricate::fits_standing_on(bar, -Vec3::UnitZ(), small));

@@ -117,7 +117,7 @@ TEST(CutPlan, APinwheelGetsOneBoxSplit) {
   expect_valid_plan(plan);
 }
 
-TEST(CutPlan, TheArmsOfAUAreSeparatedNotCut) {
+TEST(CutPlan, TheArmsOfAUAreCutApartByAFreePlaneWithoutContacts) {
   OccupancyGrid g = full_grid(3, 2, 1);
   g.inside = {1, 1, 1, 1, 0, 1};
   const auto p =
@@ -127,7 +127,9 @@ TEST(CutPlan, TheArmsOfAUAreSeparatedNotCut) {
   ASSERT_EQ(plan.cuts.size(), 2u);
   EXPECT_EQ(plan.cuts[0].axis, 1);  // the base off the arms
   EXPECT_EQ(plan.cuts[0].contacts.size(), 2u);
-  EXPECT_EQ(plan.cuts[1].axis, -1);  // then the arms apart
+  EXPECT_EQ(plan.cuts[1].axis, 0);  // then the arms apart, at the first free plane x = 1
+  EXPECT_EQ(plan.cuts[1].plane, 1);
+  EXPECT_TRUE(plan.cuts[1].contacts.empty());
   EXPECT_EQ(plan.cuts[1].below, std::vector<int>{1});
   EXPECT_EQ(plan.cuts[1].above, std::vector<int>{2});
 }

@@ -2,6 +2,7 @@
 // each part is the affine image of its box; the parts are closed, outward, free of
 // self-intersections and their volumes add up to the solid's.
 #include "core/topology.h"
+#include "fabricate/corners.h"
 #include "fabricate/parts.h"
 
 #include "fabricate_fixtures.h"
@@ -26,7 +27,8 @@ TEST(Parts, AnAffineTIsCutIntoItsTwoBoxesExactly) {
   mt.cells = map.tets;
   const core::TetBoundary b = core::boundary(mt);
   const fabricate::Parts parts =
-      fabricate::cut_parts(b.surface, plan, planes, fabricate::box_lookup(map, g, plan.partition));
+      fabricate::cut_parts(b.surface, plan, planes, fabricate::box_lookup(map, g, plan.partition),
+                           fabricate::map_centres(fabricate::ToModel(map), g, plan.partition));
   ASSERT_EQ(parts.parts.size(), 2u);
   const double det = A.determinant();
   EXPECT_NEAR(parts.solid_volume, 4 * det, 1e-9);
