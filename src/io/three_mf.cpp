@@ -138,6 +138,34 @@ std::vector<NMR::MODELMESHTRIANGLE> to_triangles(const core::TriMesh& m) {
   return out;
 }
 
+//! A UUID derived from the object's geometry and its place in the file (FNV-1a over both, in two
+//! independent 64-bit lanes), in the 8-4-4-4-12 form with the version-4 and variant bits set.
+//! lib3mf would draw random ones: with these, the same parts give the same file, byte for byte.
+std::string content_uuid(std::size_t index, const ThreeMfObject& object, std::uint64_t salt) {
+  std::array<std::uint64_t, 2> h{0xcbf29ce484222325ULL ^ salt, 0x84222325cbf29ce4ULL ^ ~salt};
+  const auto mix = [&h](const void* data, std::size_t n) {
+    const auto* b = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::uint64_t& x : h) x = (x ^ b[i]) * 0x100000001b3ULL + (&x == &h[1] ? 0x9e37 : 0);
+  };
+  mix(&index, sizeof index);
+  mix(object.name.data(), object.name.size());
+  for (const core::Vec3& p : object.mesh.points) mix(p.data(), 3 * sizeof(double));
+  for (const auto& t : object.mesh.cells) mix(t.data(), 3 * sizeof(int));
+  std::array<unsigned char, 16> u{};
+  for (int i = 0; i < 16; ++i) u[i] = static_cast<unsigned char>(h[i / 8] >> (8 * (i % 8)));
+  u[6] = static_cast<unsigned char>((u[6] & 0x0f) | 0x40);
+  u[8] = static_cast<unsigned char>((u[8] & 0x3f) | 0x80);
+  std::string out;
+  static const char* hex = "0123456789abcdef";
+  for (int i = 0; i < 16; ++i) {
+    if (i == 4 || i == 6 || i == 8 || i == 10) out += '-';
+    out += hex[u[i] >> 4];
+    out += hex[u[i] & 15];
+  }
+  return out;
+}
+
 //! Builds one 3MF model: a base-material group holding one colour per object, then per object
 //! a mesh object using its colour and a build item placing it as it is.
 class ModelBuilder {
@@ -162,6 +190,8 @@ class ModelBuilder {
     if (!object.name.empty())
       check(NMR::lib3mf_object_setnameutf8(mesh.get(), object.name.c_str()), mesh.get(), file_,
             Direction::Write, "naming an object");
+    check(NMR::lib3mf_object_setuuidutf8(mesh.get(), content_uuid(i, object, 1).c_str()),
+          mesh.get(), file_, Direction::Write, "setting an object's UUID");
     std::vector<NMR::MODELMESHVERTEX> vertices = to_vertices(object.mesh);
     std::vector<NMR::MODELMESHTRIANGLE> triangles = to_triangles(object.mesh);
     check(NMR::lib3mf_meshobject_setgeometry(mesh.get(), vertices.data(),
@@ -178,6 +208,11 @@ class ModelBuilder {
     Handle item;
     check(NMR::lib3mf_model_addbuilditem(model_.get(), mesh.get(), nullptr, item.out()),
           model_.get(), file_, Direction::Write, "adding a build item");
+    check(NMR::lib3mf_builditem_setuuidutf8(item.get(), content_uuid(i, object, 2).c_str()),
+          item.get(), file_, Direction::Write, "setting a build item's UUID");
+    if (i == 0)
+      check(NMR::lib3mf_model_setbuilduuidutf8(model_.get(), content_uuid(i, object, 3).c_str()),
+            model_.get(), file_, Direction::Write, "setting the build's UUID");
   }
 
   //! The whole package, as the bytes of a .3mf file.

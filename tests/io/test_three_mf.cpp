@@ -90,6 +90,19 @@ TEST(ThreeMf, RoundTripKeepsNamesGeometryAndColours) {
   }
 }
 
+TEST(ThreeMf, TheSameObjectsGiveTheSameFileByteForByte) {
+  test::TempDir dir("three_mf_same");
+  write_3mf(dir / "a.3mf", two_cubes());
+  write_3mf(dir / "b.3mf", two_cubes());
+  const std::string a = slurp(dir / "a.3mf");
+  EXPECT_FALSE(a.empty());
+  EXPECT_EQ(a, slurp(dir / "b.3mf"));  // lib3mf's random UUIDs replaced by content-derived ones
+  std::vector<ThreeMfObject> moved = two_cubes();
+  moved[1].mesh.points[0].x() += 1.0;
+  write_3mf(dir / "c.3mf", moved);
+  EXPECT_NE(a, slurp(dir / "c.3mf"));
+}
+
 TEST(ThreeMf, MissingFolderThrowsAndLeavesNothing) {
   test::TempDir dir("three_mf_missing");
   const fs::path file = dir / "no_such_folder" / "parts.3mf";
