@@ -5,7 +5,9 @@
 //! deviation from their points and the planes tilted to keep boxes on their sides; the time of
 //! partition, merging, plan and planes (median of 3). Prints a text table, or JSON with --json.
 //!
-//! usage: bench_partition [--json] [--no-merge] [--chamber X Y Z] DIR[=SOLID] ...
+//! usage: bench_partition [--json] [--no-merge] [--chamber X Y Z | --chamber-fraction F]
+//!                        DIR[=SOLID] ...
+//!   --chamber-fraction F: a cubic chamber whose side is F times each model's diagonal.
 //!   With SOLID (a surface file, or "map" for the boundary of the map's model tets) the whole
 //!   decomposition runs (exact cuts included; median of 3) and its parts are checked: closed,
 //!   outward, no self-intersection, volumes adding up, overlap and gap by sampling, the parts'
@@ -113,8 +115,12 @@ void decomposition_figures(const core::PolycubeMap& map, const core::TriMesh& so
 }
 
 Row run(const std::filesystem::path& dir, const std::string& solid_path,
-        const fabricate::DecomposeOptions& o) {
+        fabricate::DecomposeOptions o, double chamber_fraction) {
   const core::PolycubeMap map = io::read_polycube_map(dir / "model.mesh", dir / "polycube.mesh");
+  if (chamber_fraction > 0) {
+    const double side = chamber_fraction * core::bounding_box(map.model).extent().norm();
+    o.chamber = {side, side, side};
+  }
   Row r;
   r.model = dir.parent_path().filename().string();
   partition_figures(map, o.merge, r);
@@ -171,6 +177,7 @@ void print(const Row& r) {
 
 int main(int argc, char** argv) {
   bool json = false;
+  double chamber_fraction = 0;  // > 0: a cubic chamber of this fraction of each model's diagonal
   fabricate::DecomposeOptions options;
   std::vector<std::string> dirs;  // DIR or DIR=SOLID (the solid's surface: also cut the parts)
   for (int i = 1; i < argc; ++i) {
@@ -179,6 +186,8 @@ int main(int argc, char** argv) {
       json = true;
     } else if (a == "--no-merge") {
       options.merge = false;
+    } else if (a == "--chamber-fraction" && i + 1 < argc) {
+      chamber_fraction = std::stod(argv[++i]);
     } else if (a == "--chamber" && i + 3 < argc) {
       options.chamber = {std::stod(argv[i + 1]), std::stod(argv[i + 2]), std::stod(argv[i + 3])};
       i += 3;
@@ -187,8 +196,10 @@ int main(int argc, char** argv) {
     }
   }
   if (dirs.empty()) {
-    std::cerr << "usage: bench_partition [--json] [--no-merge] [--chamber X Y Z] DIR[=SOLID] ... "
-                 "(each DIR with model.mesh and polycube.mesh)\n";
+    std::cerr
+        << "usage: bench_partition [--json] [--no-merge] [--chamber X Y Z | --chamber-fraction "
+           "F] DIR[=SOLID] ... "
+           "(each DIR with model.mesh and polycube.mesh)\n";
     return 2;
   }
   core::logger().set_level(spdlog::level::err);
@@ -200,8 +211,8 @@ int main(int argc, char** argv) {
   for (const auto& d : dirs) {
     try {
       const auto eq = d.find('=');
-      const Row r =
-          run(d.substr(0, eq), eq == std::string::npos ? std::string() : d.substr(eq + 1), options);
+      const Row r = run(d.substr(0, eq), eq == std::string::npos ? std::string() : d.substr(eq + 1),
+                        options, chamber_fraction);
       if (json)
         out.push_back(to_json(r));
       else

@@ -1,15 +1,25 @@
 // `polycube fabricate`: the affine T's map is cut into its two boxes; the part STLs re-read as
-// closed surfaces whose volumes are the boxes' images; parts.json says the same; bad input exits 2.
+// closed surfaces whose volumes are the boxes' images; parts.json says the same; bad input exits
+// 2. From a shape (a built-in sample): construct, simplify and the parts in one command, every
+// output re-read (STL, 3MF, PLY, VTK), PrusaSlicer's own manifold check when it is installed;
+// a chamber splits the parts until each stands in it; run --fabricate adds the stage.
 #include "cli/run_cli.h"
 #include "core/topology.h"
 #include "io/mesh_io.h"
 #include "io/polycube_map_io.h"
+#include "io/three_mf.h"
 
 #include "fabricate_fixtures.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <fmt/format.h>
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -53,6 +63,134 @@ TEST(FabricateCli, TheTIsCutIntoTwoPartsWrittenAsStlAndJson) {
     total += v;
   }
   EXPECT_NEAR(total, 4 * det, 1e-6 * total);
+}
+
+//! Reads every part the output folder's parts.json lists: closed, manifold, outward, their
+//! volumes adding up to the solid's; the 3MF holds them all; the exploded views have every
+//! triangle. Returns parts.json.
+nlohmann::json expect_outputs(const fs::path& dir) {
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "parts.json"));
+  EXPECT_EQ(j["failing_parts"], 0);
+  double total = 0;
+  std::size_t triangles = 0;
+  for (const auto& p : j["parts"]) {
+    const core::TriMesh m = io::read_surface(dir / p["file"].get<std::string>());
+    const core::SurfaceReport topo = core::analyze_surface(m);
+    EXPECT_TRUE(topo.closed && topo.manifold && topo.consistently_oriented) << p["file"];
+    EXPECT_FALSE(p["flat_sides"].empty()) << p["file"];
+    total += enclosed_volume(m);
+    triangles += m.cells.size();
+  }
+  const double solid = j["solid_volume"].get<double>();
+  EXPECT_NEAR(total, solid, 1e-5 * solid);  // STL floats
+  const auto assembly = io::read_3mf(dir / "parts.3mf");
+  EXPECT_EQ(assembly.size(), j["parts"].size());
+  for (const char* view : {"exploded.ply", "exploded.vtk"}) {
+    const core::MeshData d = io::read_mesh(dir / view);
+    EXPECT_EQ(d.triangles.size(), triangles) << view;
+    EXPECT_FALSE(d.cell_data.empty()) << view;
+  }
+  return j;
+}
+
+//! PrusaSlicer's --info on a file: the number of "manifold = yes" and "manifold = no" lines, or
+//! {-1, -1} when it did not run.
+std::pair<int, int> prusa_manifold(const fs::path& file) {
+  const fs::path out = file.string() + ".info.txt";
+  const int status = std::system(
+      ("prusa-slicer --info '" + file.string() + "' > '" + out.string() + "' 2>&1").c_str());
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return {-1, -1};
+  std::ifstream in(out);
+  std::string line;
+  std::pair<int, int> n{0, 0};
+  while (std::getline(in, line)) {
+    n.first += line == "manifold = yes" ? 1 : 0;
+    n.second += line == "manifold = no" ? 1 : 0;
+  }
+  return n;
+}
+
+//! The flange sample's parts, made once for the tests below (construct + simplify + cut).
+const fs::path& flange_parts() {
+  static const fs::path dir = [] {
+    const fs::path d = fs::path(::testing::TempDir()) / "fabricate_flange";
+    fs::remove_all(d);
+    fs::create_directories(d);
+    test::run_cli("sample flange -o " + (d / "flange.obj").string());
+    const auto r = test::run_cli("-q fabricate " + (d / "flange.obj").string() + " -o " +
+                                 (d / "out").string());
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return d / "out" / "parts";
+  }();
+  return dir;
+}
+
+TEST(FabricateCli, AShapeIsMappedSimplifiedAndCutInOneCommand) {
+  const nlohmann::json j = expect_outputs(flange_parts());
+  EXPECT_GT(j["parts_count"].get<int>(), 1);
+  EXPECT_LE(j["parts_count"].get<int>(), j["boxes"].get<int>());
+  EXPECT_TRUE(fs::exists(flange_parts().parent_path() / "simplify" / "model.mesh"));
+}
+
+TEST(FabricateCli, PrusaSlicerFindsEveryPartManifold) {
+  if (std::system("command -v prusa-slicer >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "prusa-slicer not installed";
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(flange_parts() / "parts.json"));
+  for (const auto& p : j["parts"]) {
+    const auto [yes, no] = prusa_manifold(flange_parts() / p["file"].get<std::string>());
+    EXPECT_EQ(yes, 1) << p["file"];
+    EXPECT_EQ(no, 0) << p["file"];
+  }
+  const auto [yes, no] = prusa_manifold(flange_parts() / "parts.3mf");
+  EXPECT_EQ(yes, static_cast<int>(j["parts"].size()));
+  EXPECT_EQ(no, 0);
+}
+
+TEST(FabricateCli, AChamberSplitsThePartsUntilEachStandsInIt) {
+  const fs::path map = flange_parts().parent_path() / "simplify";
+  const fs::path out = flange_parts().parent_path() / "chamber";
+  const nlohmann::json free = nlohmann::json::parse(std::ifstream(flange_parts() / "parts.json"));
+  // A chamber a third of the largest part's longest side: every such part must be split.
+  double longest = 0;
+  for (const auto& p : free["parts"]) {
+    const auto& b = p["bounding_box"];
+    for (int a = 0; a < 3; ++a)
+      longest = std::max(longest, b["max"][a].get<double>() - b["min"][a].get<double>());
+  }
+  const double c = longest / 3;
+  const auto r = test::run_cli(
+      fmt::format("-q fabricate {} {} -o {} --chamber {} {} {}", (map / "model.mesh").string(),
+                  (map / "polycube.mesh").string(), out.string(), c, c, c));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = expect_outputs(out);
+  EXPECT_GT(j["parts_count"].get<int>(), free["parts_count"].get<int>());
+  EXPECT_EQ(j["unfit_parts"], 0);
+  for (const auto& p : j["parts"]) ASSERT_FALSE(p["base"].is_null()) << p["file"];
+}
+
+TEST(FabricateCli, AChamberNothingFitsIsRefusedWithTheRemedy) {
+  const fs::path map = flange_parts().parent_path() / "simplify";
+  const fs::path out = flange_parts().parent_path() / "tiny";
+  const auto r = test::run_cli("fabricate " + (map / "model.mesh").string() + " " +
+                               (map / "polycube.mesh").string() + " -o " + out.string() +
+                               " --chamber 0.01 0.01 0.01");
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find("larger chamber"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out / "parts.json"));
+}
+
+TEST(FabricateCli, RunWithFabricateWritesThePartsBesideTheMesh) {
+  const fs::path d = fs::path(::testing::TempDir()) / "run_fabricate";
+  fs::remove_all(d);
+  fs::create_directories(d);
+  test::run_cli("sample l-bracket -o " + (d / "l.obj").string());
+  const auto r = test::run_cli("-q --json run " + (d / "l.obj").string() + " -o " +
+                               (d / "out").string() + " --hexes 500 --no-optimize --fabricate");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json report = nlohmann::json::parse(r.out);
+  EXPECT_GT(report["fabricate"]["parts"].get<int>(), 1);
+  expect_outputs(d / "out" / "parts");
+  EXPECT_TRUE(fs::exists(d / "out" / "hex.mesh"));
 }
 
 TEST(FabricateCli, AMissingMapIsBadInput) {
