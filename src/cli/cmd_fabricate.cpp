@@ -34,6 +34,7 @@ struct FabricateOptions {
   bool no_merge = false;
   bool keep_failed = false;
   fabricate::DecomposeOptions decompose;
+  fabricate::PrintOptions print;
 };
 
 //! From a map: decompose, check, write into the output folder.
@@ -42,14 +43,14 @@ void fabricate_map(const FabricateOptions& o) {
   structure::validate_map(map);
   const core::TriMesh solid =
       o.solid.empty() ? core::boundary(map.model_mesh()).surface : read_target_surface(o.solid);
-  const fabricate::Decomposition d = fabricate::decompose(map, solid, o.decompose);
-  if (!o.keep_failed) pipeline::check_parts(d, o.decompose);
-  const auto files = pipeline::write_parts(o.output, d, o.decompose);
-  print_result(
-      pipeline::parts_json(d, o.decompose),
-      pipeline::parts_table(d) + fmt::format("wrote {} files to {} (parts.3mf opens the "
-                                             "assembly in a slicer, exploded.vtk in ParaView)\n",
-                                             files.size(), o.output));
+  const pipeline::Fabrication f = pipeline::fabricate_solid(map, solid, o.decompose, o.print);
+  if (!o.keep_failed) pipeline::check_parts(f);
+  const auto files = pipeline::write_parts(o.output, f);
+  print_result(pipeline::parts_json(f),
+               pipeline::parts_table(f) + fmt::format("wrote {} files to {} (parts.3mf opens the "
+                                                      "assembly in a slicer, exploded.vtk in "
+                                                      "ParaView)\n",
+                                                      files.size(), o.output));
 }
 
 //! From a shape: run's stages input, construct, simplify, fabricate.
@@ -58,6 +59,7 @@ void fabricate_shape(const FabricateOptions& o) {
   run.hexmesh = false;
   run.fabricate = true;
   run.fabricate_options = o.decompose;
+  run.fabricate_print = o.print;
   run.construct.on_attempt = attempt_progress();
   const bool show = !global_options().quiet && !global_options().json;
   run.on_stage = [show](int i, int n, const std::string& name) {
@@ -121,6 +123,11 @@ void register_fabricate(CLI::App& app) {
                   "parts/)")
       ->required();
   add_chamber_option(*sub, opts->chamber);
+  sub->add_option("--overhang", opts->print.overhang_degrees,
+                  "Printing check: steepest overhang printed without support, in degrees from "
+                  "the vertical")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 90.0));
   sub->add_flag("--no-merge", opts->no_merge,
                 "Keep the thesis's partition: no merging of boxes whose union is a box");
   sub->add_option(

@@ -69,7 +69,12 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
                    {"plan_seconds", r.padding_plan_seconds},
                    {"plan_optimal", r.padding_plan_optimal},
                    {"optimize_seconds", r.padding_optimize_seconds}}},
-      {"fabricate", {{"boxes", r.part_boxes}, {"parts", r.parts}, {"unfit_parts", r.unfit_parts}}},
+      {"fabricate",
+       {{"boxes", r.part_boxes},
+        {"parts", r.parts},
+        {"unfit_parts", r.unfit_parts},
+        {"support_whole_percent", r.support_whole_percent},
+        {"support_parts_percent", r.support_parts_percent}}},
       {"hex_domains_before", r.hex_domains_before},
       {"hex_domains_after", r.hex_domains_after},
       {"quad_domains_before", r.quad_domains_before},
@@ -107,7 +112,9 @@ std::string summary_table(const pipeline::RunResult& r) {
       what = fmt::format("{}: #D {} -> {}, #dom {} -> {}", r.simplify_step, r.hex_domains_before,
                          r.hex_domains_after, r.quad_domains_before, r.quad_domains_after);
     else if (s.name == "fabricate")
-      what = fmt::format("{} boxes, {} parts (parts/parts.3mf, parts/exploded.vtk)", r.part_boxes, r.parts);
+      what = fmt::format("{} boxes, {} parts, support {:.1f} % in one piece, {:.1f} % in parts "
+                         "(parts/parts.3mf, parts/exploded.vtk)",
+                         r.part_boxes, r.parts, r.support_whole_percent, r.support_parts_percent);
     else if (s.name == "hexmesh")
       what = fmt::format("scale {:.4g}: {} hexes, {} quads; mSJ {} aSJ {}, {} inverted", r.grid_scale, r.hexes,
                          r.quads, figure(r.msj_gridded), figure(r.asj_gridded), count(r.inverted_gridded));

@@ -2,6 +2,7 @@
 #include "pipeline/parts_output.h"
 
 #include "core/errors.h"
+#include "core/stopwatch.h"
 #include "io/mesh_io.h"
 #include "io/three_mf.h"
 
@@ -62,7 +63,8 @@ Vec3 centroid(const core::TriMesh& m) {
 }
 
 //! All non-empty parts in one mesh, each moved away from the centre, with per-triangle fields.
-core::MeshData exploded(const fabricate::Decomposition& d) {
+core::MeshData exploded(const Fabrication& f) {
+  const fabricate::Decomposition& d = f.decomposition;
   Vec3 centre = Vec3::Zero();
   double volume = 0.0;
   for (const auto& p : d.parts.parts) {
@@ -71,32 +73,65 @@ core::MeshData exploded(const fabricate::Decomposition& d) {
   }
   if (volume > 0) centre /= volume;
   core::MeshData out;
-  core::Field id{"part_id", {}}, side{"flat_side", {}}, red{"red", {}}, green{"green", {}},
-      blue{"blue", {}};
+  core::Field id{"part_id", {}}, side{"flat_side", {}}, overhang{"overhang", {}}, red{"red", {}},
+      green{"green", {}}, blue{"blue", {}};
   for (std::size_t i = 0; i < d.parts.parts.size(); ++i) {
     const fabricate::Part& p = d.parts.parts[i];
     const Vec3 shift = kExplode * (centroid(p.mesh) - centre);
     const int base = static_cast<int>(out.points.size());
     for (const Vec3& x : p.mesh.points) out.points.push_back(x + shift);
     const auto rgb = part_colour(i);
+    const int best = f.prints[i].best;
+    const std::vector<std::uint8_t> over =
+        best < 0 ? std::vector<std::uint8_t>(p.mesh.cells.size(), 0)
+                 : fabricate::overhanging(p.mesh, p.sides[static_cast<std::size_t>(best)].normal,
+                                          f.print.overhang_degrees);
     for (std::size_t t = 0; t < p.mesh.cells.size(); ++t) {
       const auto& tri = p.mesh.cells[t];
       out.triangles.push_back({tri[0] + base, tri[1] + base, tri[2] + base});
       id.values.push_back(static_cast<double>(i));
       side.values.push_back(p.triangle_side.empty() || p.triangle_side[t] < 0 ? 0.0 : 1.0);
+      overhang.values.push_back(over[t]);
       red.values.push_back(rgb[0]);
       green.values.push_back(rgb[1]);
       blue.values.push_back(rgb[2]);
     }
   }
-  out.cell_data = {std::move(id), std::move(side), std::move(red), std::move(green),
-                   std::move(blue)};
+  out.cell_data = {std::move(id),  std::move(side),  std::move(overhang),
+                   std::move(red), std::move(green), std::move(blue)};
   return out;
 }
 
 nlohmann::json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
+double percent(double fraction) { return 100.0 * fraction; }
+
 }  // namespace
+
+double Fabrication::parts_support_fraction() const {
+  double over = 0.0, area = 0.0;
+  for (const fabricate::PartPrint& p : prints) {
+    area += p.area;
+    if (p.best >= 0) over += p.sides[static_cast<std::size_t>(p.best)].overhang_area;
+  }
+  return area > 0 ? over / area : 0.0;
+}
+
+Fabrication fabricate_solid(const core::PolycubeMap& map, const core::TriMesh& solid,
+                            const fabricate::DecomposeOptions& options,
+                            const fabricate::PrintOptions& print) {
+  Fabrication f;
+  f.decomposition = fabricate::decompose(map, solid, options);
+  f.options = options;
+  f.print = print;
+  f.print.chamber = options.chamber;
+  const core::Stopwatch clock;
+  for (const fabricate::Part& p : f.decomposition.parts.parts)
+    f.prints.push_back(fabricate::check_part_printing(p, f.print));
+  f.whole = fabricate::best_axis_standing(solid, f.print);
+  f.check_seconds = clock.seconds();
+  return f;
+}
 
 std::string part_problem(const fabricate::Part& p) {
   if (p.mesh.cells.empty()) return "empty (its box's material went to a neighbour)";
@@ -112,7 +147,9 @@ int failing_parts(const fabricate::Decomposition& d) {
   return n;
 }
 
-void check_parts(const fabricate::Decomposition& d, const fabricate::DecomposeOptions& o) {
+void check_parts(const Fabrication& f) {
+  const fabricate::Decomposition& d = f.decomposition;
+  const fabricate::DecomposeOptions& o = f.options;
   for (std::size_t i = 0; i < d.parts.parts.size(); ++i) {
     const std::string why = part_problem(d.parts.parts[i]);
     if (!why.empty())
@@ -128,14 +165,21 @@ void check_parts(const fabricate::Decomposition& d, const fabricate::DecomposeOp
         d.unfit_parts, d.parts.parts.size(), o.chamber.x, o.chamber.y, o.chamber.z, d.rounds));
 }
 
-nlohmann::json parts_json(const fabricate::Decomposition& d, const fabricate::DecomposeOptions& o) {
+nlohmann::json parts_json(const Fabrication& f) {
+  const fabricate::Decomposition& d = f.decomposition;
+  const fabricate::DecomposeOptions& o = f.options;
   nlohmann::json list = nlohmann::json::array();
   for (std::size_t i = 0; i < d.parts.parts.size(); ++i) {
     const fabricate::Part& p = d.parts.parts[i];
     const fabricate::Box& b = d.plan.partition.boxes[static_cast<std::size_t>(p.box)];
     nlohmann::json sides = nlohmann::json::array();
-    for (const auto& s : p.sides)
-      sides.push_back({{"cut", s.cut}, {"normal", vec(s.normal)}, {"area", s.area}});
+    const fabricate::PartPrint& print = f.prints[i];
+    for (std::size_t k = 0; k < p.sides.size(); ++k)
+      sides.push_back({{"cut", p.sides[k].cut},
+                       {"normal", vec(p.sides[k].normal)},
+                       {"area", p.sides[k].area},
+                       {"fits_chamber", print.sides[k].fits},
+                       {"support_percent", percent(print.sides[k].support_fraction)}});
     const std::string why = part_problem(p);
     nlohmann::json part = {
         {"file", p.mesh.cells.empty() ? nlohmann::json(nullptr) : nlohmann::json(part_file(i))},
@@ -152,7 +196,11 @@ nlohmann::json parts_json(const fabricate::Decomposition& d, const fabricate::De
         {"ok", why.empty()},
         {"problem", why.empty() ? nlohmann::json(nullptr) : nlohmann::json(why)},
         {"flat_sides", sides},
-        {"base", d.base[i] >= 0 ? nlohmann::json(d.base[i]) : nlohmann::json(nullptr)}};
+        {"base", print.best >= 0 ? nlohmann::json(print.best) : nlohmann::json(nullptr)},
+        {"support_percent",
+         print.best >= 0 ? nlohmann::json(percent(
+                               print.sides[static_cast<std::size_t>(print.best)].support_fraction))
+                         : nlohmann::json(nullptr)}};
     if (!p.mesh.points.empty()) {
       const core::BoundingBox bb = core::bounding_box(p.mesh.points);
       part["bounding_box"] = {{"min", vec(bb.min)}, {"max", vec(bb.max)}};
@@ -174,30 +222,53 @@ nlohmann::json parts_json(const fabricate::Decomposition& d, const fabricate::De
           {"solid_volume", d.parts.solid_volume},
           {"parts_volume", d.parts.volume_sum},
           {"seconds",
-           {{"partition", d.partition_seconds}, {"cuts", d.cut_seconds}, {"total", d.seconds}}},
+           {{"partition", d.partition_seconds},
+            {"cuts", d.cut_seconds},
+            {"decomposition", d.seconds},
+            {"checks", f.check_seconds}}},
+          {"printing",
+           {{"overhang_degrees", f.print.overhang_degrees},
+            {"whole_support_percent", percent(f.whole.support_fraction)},
+            {"whole_down", vec(f.whole.down)},
+            {"parts_support_percent", percent(f.parts_support_fraction())}}},
           {"parts", list}};
 }
 
-std::string parts_table(const fabricate::Decomposition& d) {
+std::string parts_table(const Fabrication& f) {
+  const fabricate::Decomposition& d = f.decomposition;
   std::string text = fmt::format(
       "{} boxes in the polycube's partition, {} parts; solid volume {:.6g}, parts {:.6g}\n",
       d.boxes, d.parts.parts.size(), d.parts.solid_volume, d.parts.volume_sum);
-  text += "  part  box  triangles      volume    size (bounding box)        sides  base  check\n";
+  text +=
+      "  part  box  triangles      volume    size (bounding box)        sides  base  support %  "
+      "check\n";
   for (std::size_t i = 0; i < d.parts.parts.size(); ++i) {
     const fabricate::Part& p = d.parts.parts[i];
     Vec3 size = Vec3::Zero();
     if (!p.mesh.points.empty()) size = core::bounding_box(p.mesh.points).extent();
     const std::string why = part_problem(p);
+    const fabricate::PartPrint& print = f.prints[i];
+    const std::string support =
+        print.best < 0
+            ? std::string("-")
+            : fmt::format(
+                  "{:.2f}",
+                  percent(print.sides[static_cast<std::size_t>(print.best)].support_fraction));
     text += fmt::format(
-        "  {:4d} {:4d} {:10d} {:11.6g}  {:8.4g} {:8.4g} {:8.4g}  {:5d}  {:>4}  {}\n", i, p.box,
-        p.mesh.num_cells(), p.volume, size.x(), size.y(), size.z(), p.sides.size(),
-        d.base[i] >= 0 ? std::to_string(d.base[i]) : "-", why.empty() ? "ok" : why);
+        "  {:4d} {:4d} {:10d} {:11.6g}  {:8.4g} {:8.4g} {:8.4g}  {:5d}  {:>4}  {:>9}  {}\n", i,
+        p.box, p.mesh.num_cells(), p.volume, size.x(), size.y(), size.z(), p.sides.size(),
+        print.best >= 0 ? std::to_string(print.best) : "-", support, why.empty() ? "ok" : why);
   }
+  text += fmt::format(
+      "support (overhang beyond {:g} degrees, % of the surface): in one piece {:.2f} "
+      "(%3DPST), in parts {:.2f} (%3DPPST)\n",
+      f.print.overhang_degrees, percent(f.whole.support_fraction),
+      percent(f.parts_support_fraction()));
   return text;
 }
 
-std::vector<fs::path> write_parts(const fs::path& dir, const fabricate::Decomposition& d,
-                                  const fabricate::DecomposeOptions& o) {
+std::vector<fs::path> write_parts(const fs::path& dir, const Fabrication& f) {
+  const fabricate::Decomposition& d = f.decomposition;
   fs::create_directories(dir);
   std::vector<fs::path> files;
   std::vector<io::ThreeMfObject> objects;
@@ -212,13 +283,13 @@ std::vector<fs::path> write_parts(const fs::path& dir, const fabricate::Decompos
     files.push_back(dir / "parts.3mf");
     io::write_3mf(files.back(), objects);
   }
-  const core::MeshData view = exploded(d);
+  const core::MeshData view = exploded(f);
   for (const char* name : {"exploded.ply", "exploded.vtk"}) {
     files.push_back(dir / name);
     io::write_mesh(files.back(), view);
   }
   files.push_back(dir / "parts.json");
-  io::write_text_atomic(files.back(), parts_json(d, o).dump(2) + "\n");
+  io::write_text_atomic(files.back(), parts_json(f).dump(2) + "\n");
   return files;
 }
 

@@ -5,12 +5,15 @@
 //!   parts.3mf         the assembly: one object per part, in place, each with its colour
 //!   exploded.ply      the parts moved apart from the solid's centre, a colour per part
 //!                     (face properties red, green, blue) and the part id (MeshLab, ParaView)
-//!   exploded.vtk      the same with cell data part_id and flat_side (1 on a cut face; ParaView)
+//!   exploded.vtk      the same with cell data part_id, flat_side (1 on a cut face) and
+//!                     overhang (1 where the part on its best base needs support; ParaView)
 //!   parts.json        the decomposition and, per part, its box, volume, bounding box,
-//!                     triangles, checks and flat sides (outward normal, area), and its base
+//!                     triangles, checks, flat sides (outward normal, area, support needed
+//!                     standing on it), and its best base; the thesis's Table 6.2 figures
 //! and the same table as text for the terminal.
 
 #include "fabricate/decompose.h"
+#include "fabricate/printing.h"
 
 #include <nlohmann/json.hpp>
 
@@ -19,6 +22,24 @@
 #include <vector>
 
 namespace polycube::pipeline {
+
+//! A decomposition with the checks of how its parts can be made (issue 21).
+struct Fabrication {
+  fabricate::Decomposition decomposition;
+  fabricate::DecomposeOptions options;
+  fabricate::PrintOptions print;
+  std::vector<fabricate::PartPrint> prints;  //!< per part: support on each flat side, the best
+  fabricate::Standing whole;  //!< the solid printed in one piece on its best axis (%3DPST)
+  double check_seconds = 0.0;
+
+  //! Support fraction of the parts on their best bases, area-weighted (%3DPPST / 100).
+  [[nodiscard]] double parts_support_fraction() const;
+};
+
+//! Decompose the solid and run the checks on its parts.
+Fabrication fabricate_solid(const core::PolycubeMap& map, const core::TriMesh& solid,
+                            const fabricate::DecomposeOptions& options,
+                            const fabricate::PrintOptions& print = {});
 
 //! Why a part fails the checks (closed, outward, free of self-intersections, not empty), or
 //! "" when it passes.
@@ -29,18 +50,17 @@ int failing_parts(const fabricate::Decomposition& d);
 
 //! \throw core::GeometryError when a part fails its checks, or does not fit the chamber on any
 //!        of its flat sides, naming the first and the remedy
-void check_parts(const fabricate::Decomposition& d, const fabricate::DecomposeOptions& o);
+void check_parts(const Fabrication& f);
 
-//! The decomposition as JSON (parts.json's content).
-nlohmann::json parts_json(const fabricate::Decomposition& d, const fabricate::DecomposeOptions& o);
+//! The decomposition and its checks as JSON (parts.json's content).
+nlohmann::json parts_json(const Fabrication& f);
 
-//! The table printed on the terminal: one line per part.
-std::string parts_table(const fabricate::Decomposition& d);
+//! The table printed on the terminal: one line per part, then the whole model's figures.
+std::string parts_table(const Fabrication& f);
 
 //! Write every file above into `dir` (created); returns the paths written, in order. Empty parts
 //! have no STL and are left out of the 3MF and the exploded views.
 std::vector<std::filesystem::path> write_parts(const std::filesystem::path& dir,
-                                               const fabricate::Decomposition& d,
-                                               const fabricate::DecomposeOptions& o);
+                                               const Fabrication& f);
 
 }  // namespace polycube::pipeline

@@ -25,6 +25,7 @@
 
 #include "construct/construct.h"
 #include "fabricate/decompose.h"
+#include "fabricate/printing.h"
 #include "mesh/grid.h"
 #include "optimize/hex_optimize.h"
 #include "padding/padding.h"
@@ -63,6 +64,7 @@ struct RunOptions {
   //! the simplification, writing the folder parts/.
   bool fabricate = false;
   fabricate::DecomposeOptions fabricate_options;
+  fabricate::PrintOptions fabricate_print;  //!< the printing check of the parts
   //! Called when a stage starts: (1-based index, number of stages, name).
   std::function<void(int, int, const std::string&)> on_stage;
   //! Fault injection, for tests of the failure handling only (the hidden `--inject-failure`
@@ -128,6 +130,8 @@ struct RunResult {
   int part_boxes = -1;                 //!< boxes of the thesis's partition
   int parts = -1;                      //!< parts after merging and chamber splits
   int unfit_parts = -1;                //!< parts that fit the chamber on none of their flat sides
+  double support_whole_percent = -1;   //!< support printing the solid in one piece (%3DPST)
+  double support_parts_percent = -1;   //!< support printing the parts on their bases (%3DPPST)
   double msj = -2, asj = -2;           //!< final hex mesh
   int inverted = -1;                   //!< final hex mesh
   int final_domains = -1;              //!< #D of the final hex mesh

@@ -1,0 +1,55 @@
+#pragma once
+//! \file printing.h
+//! \brief How much support a part needs when 3D printed on each of its flat sides (thesis
+//! §6.5.1, Table 6.2).
+//!
+//! Printed standing on a base (a flat side on the bed, its outward normal pointing down), a
+//! triangle overhangs when it faces down more steeply than the printer's angle: its normal
+//! within `overhang_degrees` of straight down (45° by default: a surface tilted more than 45°
+//! from the vertical). Triangles lying on the bed (the base, and any other down-facing triangle
+//! at the bed's height) need none. The support fraction is the overhanging area over the part's
+//! whole surface area.
+
+#include "core/types.h"
+#include "fabricate/chamber.h"
+#include "fabricate/parts.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace polycube::fabricate {
+
+struct PrintOptions {
+  double overhang_degrees = 45.0;  //!< largest overhang printed without support, from vertical
+  Chamber chamber;                 //!< bases on which the part does not fit are not chosen
+};
+
+//! Standing on one direction.
+struct Standing {
+  core::Vec3 down = -core::Vec3::UnitZ();  //!< outward normal of the base
+  double overhang_area = 0.0;              //!< model units²
+  double support_fraction = 0.0;           //!< overhang_area / the part's surface area
+  bool fits = true;                        //!< fits the chamber standing so
+};
+
+//! Per-triangle overhang on a base: 1 overhanging, 0 not (bed triangles included).
+std::vector<std::uint8_t> overhanging(const core::TriMesh& mesh, const core::Vec3& down,
+                                      double overhang_degrees);
+
+//! The part on `down`: overhanging area and fraction.
+Standing stand(const core::TriMesh& mesh, const core::Vec3& down, const PrintOptions& options);
+
+//! A part on each of its flat sides, and the best: the least support among the sides it fits
+//! the chamber on (ties: the larger side).
+struct PartPrint {
+  std::vector<Standing> sides;  //!< per flat side of the part, same order
+  int best = -1;                //!< index into sides; -1 when it fits on none (or has none)
+  double area = 0.0;            //!< the part's surface area
+};
+PartPrint check_part_printing(const Part& part, const PrintOptions& options);
+
+//! A solid printed in one piece on the best of the six directions of its bounding box (the
+//! thesis's %3DPST): the least support fraction.
+Standing best_axis_standing(const core::TriMesh& solid, const PrintOptions& options);
+
+}  // namespace polycube::fabricate

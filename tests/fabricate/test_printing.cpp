@@ -1,0 +1,86 @@
+// Support needed to print a part: a cube needs none on any side; a T standing on its stem needs
+// support under the two arms of its bar (2 of its 18 unit squares), upside down none, on the end
+// of its bar under the stem's side (1 of 18); the best base is the side needing least among
+// those that fit the chamber; a solid in one piece takes its best axis.
+#include "core/topology.h"
+#include "fabricate/printing.h"
+
+#include "../support/fixtures.h"
+
+#include <gtest/gtest.h>
+
+namespace polycube {
+namespace {
+
+using core::Vec3;
+
+//! The boundary of unit cells of a grid, keeping the cells `keep` says.
+template <class Keep>
+core::TriMesh cells_surface(int nx, int ny, int nz, Keep keep) {
+  core::HexMesh h = test::hex_grid(nx, ny, nz);
+  core::HexMesh kept;
+  kept.points = h.points;
+  for (int k = 0, c = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i, ++c)
+        if (keep(i, j, k)) kept.cells.push_back(h.cells[static_cast<std::size_t>(c)]);
+  return core::boundary(test::tetrahedralize(kept)).surface;
+}
+
+//! A T of 4 unit cubes: the stem (1, 0, 0) under the bar (0..2, 0, 1).
+core::TriMesh t_shape() {
+  return cells_surface(3, 1, 2, [](int i, int, int k) { return k == 1 || i == 1; });
+}
+
+TEST(Printing, ACubeNeedsNoSupportOnAnySide) {
+  const core::TriMesh cube = cells_surface(2, 2, 2, [](int, int, int) { return true; });
+  for (int a = 0; a < 3; ++a)
+    for (const double s : {-1.0, 1.0}) {
+      const fabricate::Standing st = fabricate::stand(cube, s * Vec3::Unit(a), {});
+      EXPECT_EQ(st.overhang_area, 0.0) << a << " " << s;
+    }
+}
+
+TEST(Printing, ATOnItsStemNeedsSupportUnderItsArms) {
+  const core::TriMesh t = t_shape();
+  const fabricate::Standing up = fabricate::stand(t, -Vec3::UnitZ(), {});
+  EXPECT_NEAR(up.overhang_area, 2.0, 1e-12);
+  EXPECT_NEAR(up.support_fraction, 2.0 / 18.0, 1e-12);
+  // Upside down, on the bar's top: the stem's end and the arms' undersides face up.
+  EXPECT_EQ(fabricate::stand(t, Vec3::UnitZ(), {}).overhang_area, 0.0);
+  // On the end of the bar: the stem's side faces down one unit above the bed.
+  EXPECT_NEAR(fabricate::stand(t, Vec3::UnitX(), {}).overhang_area, 1.0, 1e-12);
+  // Lying flat, on the T's face: nothing faces down but the bed.
+  EXPECT_EQ(fabricate::stand(t, -Vec3::UnitY(), {}).overhang_area, 0.0);
+  // The overhang angle: faces exactly horizontal overhang at any angle below 90 degrees.
+  fabricate::PrintOptions vertical;
+  vertical.overhang_degrees = 89.0;
+  EXPECT_NEAR(fabricate::stand(t, -Vec3::UnitZ(), vertical).overhang_area, 2.0, 1e-12);
+}
+
+TEST(Printing, ThePartStandsOnItsSideNeedingLeastSupportThatFitsTheChamber) {
+  fabricate::Part part;
+  part.mesh = t_shape();
+  part.sides = {{0, -Vec3::UnitZ(), 1.0}, {1, Vec3::UnitZ(), 3.0}, {2, Vec3::UnitX(), 1.0}};
+  const fabricate::PartPrint p = fabricate::check_part_printing(part, {});
+  ASSERT_EQ(p.sides.size(), 3u);
+  EXPECT_EQ(p.best, 1);  // upside down: no support
+  EXPECT_NEAR(p.area, 18.0, 1e-12);
+  fabricate::PrintOptions narrow;
+  narrow.chamber = {2.5, 2.5, 3.5};  // the bar (3 long) fits only standing on its end
+  const fabricate::PartPrint q = fabricate::check_part_printing(part, narrow);
+  EXPECT_FALSE(q.sides[0].fits);
+  EXPECT_FALSE(q.sides[1].fits);
+  EXPECT_TRUE(q.sides[2].fits);
+  EXPECT_EQ(q.best, 2);
+  EXPECT_NEAR(q.sides[2].support_fraction, 1.0 / 18.0, 1e-12);
+}
+
+TEST(Printing, ASolidInOnePieceTakesItsBestAxis) {
+  const fabricate::Standing s = fabricate::best_axis_standing(t_shape(), {});
+  EXPECT_EQ(s.overhang_area, 0.0);
+  EXPECT_EQ(s.down.x(), 0.0);  // on its face or upside down, not on an end (1 square)
+}
+
+}  // namespace
+}  // namespace polycube
