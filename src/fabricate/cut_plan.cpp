@@ -98,16 +98,36 @@ bool separate(const BoxPartition& p, const std::vector<int>& group, Cut& cut) {
   return !cut.above.empty();
 }
 
+//! The cut of the group along the candidate's plane (boxes sorted on each side, the contacts
+//! across it).
+Cut make_cut(const BoxPartition& p, std::vector<int> group, const Candidate& c, int parent,
+             bool parent_above) {
+  Cut cut;
+  cut.axis = c.axis;
+  cut.plane = c.plane;
+  cut.parent = parent;
+  cut.parent_above = parent_above;
+  std::sort(group.begin(), group.end());
+  for (int b : group) (p.boxes[b].hi[c.axis] <= c.plane ? cut.below : cut.above).push_back(b);
+  std::vector<char> below(p.boxes.size(), 0), above(p.boxes.size(), 0);
+  for (int b : cut.below) below[b] = 1;
+  for (int b : cut.above) above[b] = 1;
+  for (const Contact& k : p.contacts)
+    if (k.axis == c.axis && k.plane == c.plane && below[k.boxes[0]] && above[k.boxes[1]])
+      cut.contacts.push_back(k);
+  return cut;
+}
+
 void plan_group(const OccupancyGrid& g, CutPlan& plan, std::vector<int> group, int parent,
-                bool parent_above) {
+                bool parent_above, const CutCheck& check) {
   if (group.size() < 2) return;
   std::vector<Candidate> cand = candidates(g, plan.partition, group);
   // Free planes first, largest seam first; else the plane crossing fewest boxes.
-  const auto better = [](const Candidate& x, const Candidate& y) {
+  std::sort(cand.begin(), cand.end(), [](const Candidate& x, const Candidate& y) {
     if (x.crossed != y.crossed) return x.crossed < y.crossed;
     if (x.area != y.area) return x.area > y.area;
     return std::make_pair(x.axis, x.plane) < std::make_pair(y.axis, y.plane);
-  };
+  });
   // A group whose boxes do not touch is cut too when a free plane lies between them (the arms
   // of a U): in model space the cuts above it may have left its pieces joined by a sliver, which
   // a separation by components would hand whole to one side. Without a free plane, it is
@@ -115,51 +135,46 @@ void plan_group(const OccupancyGrid& g, CutPlan& plan, std::vector<int> group, i
   Cut apart;
   apart.parent = parent;
   apart.parent_above = parent_above;
-  const bool free_plane =
-      !cand.empty() && std::min_element(cand.begin(), cand.end(), better)->crossed == 0;
+  const bool free_plane = !cand.empty() && cand.front().crossed == 0;
   if (!free_plane && separate(plan.partition, group, apart)) {
     const int id = static_cast<int>(plan.cuts.size());
     plan.cuts.push_back(apart);
-    plan_group(g, plan, apart.below, id, false);
-    plan_group(g, plan, apart.above, id, true);
+    plan_group(g, plan, apart.below, id, false, check);
+    plan_group(g, plan, apart.above, id, true, check);
     return;
   }
   if (cand.empty())
     throw core::InputError("cut plan: a group of several boxes has no plane between them");
-  const Candidate best = *std::min_element(cand.begin(), cand.end(), better);
+  // The first free plane the check accepts (its model-space plane can keep every box on its
+  // side), else the first.
+  Candidate best = cand.front();
+  if (check && free_plane)
+    for (const Candidate& c : cand) {
+      if (c.crossed > 0) break;
+      if (check(plan.partition, make_cut(plan.partition, group, c, parent, parent_above))) {
+        best = c;
+        break;
+      }
+    }
   if (best.crossed > 0) {
     plan.split_boxes += split_crossed(plan.partition, plan.cuts, group, best.axis, best.plane);
     index_boxes(g, plan.partition);
   }
-  Cut cut;
-  cut.axis = best.axis;
-  cut.plane = best.plane;
-  cut.parent = parent;
-  cut.parent_above = parent_above;
-  std::sort(group.begin(), group.end());
-  for (int b : group)
-    (plan.partition.boxes[b].hi[best.axis] <= best.plane ? cut.below : cut.above).push_back(b);
-  std::vector<char> below(plan.partition.boxes.size(), 0), above(plan.partition.boxes.size(), 0);
-  for (int b : cut.below) below[b] = 1;
-  for (int b : cut.above) above[b] = 1;
-  for (const Contact& k : plan.partition.contacts)
-    if (k.axis == best.axis && k.plane == best.plane && below[k.boxes[0]] && above[k.boxes[1]])
-      cut.contacts.push_back(k);
+  const Cut cut = make_cut(plan.partition, group, best, parent, parent_above);
   const int id = static_cast<int>(plan.cuts.size());
   plan.cuts.push_back(cut);
-  const std::vector<int> lower = cut.below, upper = cut.above;
-  plan_group(g, plan, lower, id, false);
-  plan_group(g, plan, upper, id, true);
+  plan_group(g, plan, cut.below, id, false, check);
+  plan_group(g, plan, cut.above, id, true, check);
 }
 
 }  // namespace
 
-CutPlan plan_cuts(const OccupancyGrid& grid, const BoxPartition& partition) {
+CutPlan plan_cuts(const OccupancyGrid& grid, const BoxPartition& partition, const CutCheck& check) {
   CutPlan plan;
   plan.partition = partition;
   std::vector<int> all(partition.boxes.size());
   for (std::size_t b = 0; b < all.size(); ++b) all[b] = static_cast<int>(b);
-  plan_group(grid, plan, all, -1, false);
+  plan_group(grid, plan, all, -1, false, check);
   return plan;
 }
 

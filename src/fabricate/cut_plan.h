@@ -12,6 +12,7 @@
 
 #include "fabricate/box_partition.h"
 
+#include <functional>
 #include <vector>
 
 namespace polycube::fabricate {
@@ -38,8 +39,14 @@ struct CutPlan {
   int split_boxes = 0;  //!< boxes split because no guillotine cut existed
 };
 
+//! Whether a candidate cut of the partition's boxes is acceptable (decompose: its model-space
+//! plane keeps every box of the group on its side).
+using CutCheck = std::function<bool(const BoxPartition&, const Cut&)>;
+
 //! Plan the cuts of a partition: at each group, the free plane with the largest contact area
-//! between its sides (ties: lowest axis, then plane), so the largest seams are cut first.
-CutPlan plan_cuts(const OccupancyGrid& grid, const BoxPartition& partition);
+//! between its sides (ties: lowest axis, then plane), so the largest seams are cut first; with a
+//! check, the first free plane in that order that the check accepts (else the first).
+CutPlan plan_cuts(const OccupancyGrid& grid, const BoxPartition& partition,
+                  const CutCheck& check = nullptr);
 
 }  // namespace polycube::fabricate

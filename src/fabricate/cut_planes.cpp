@@ -231,38 +231,40 @@ void measure(CutPlane& plane, const std::vector<Vec3>& p) {
 
 }  // namespace
 
+CutPlane fit_cut_plane(const ToModel& to_model, const OccupancyGrid& grid,
+                       const BoxPartition& partition, const Cut& cut) {
+  if (cut.axis < 0) return {};
+  std::vector<Vec3> points;
+  for (const Vec3& q : cut.contacts.empty() ? section_vertices(grid, cut.axis, cut.plane)
+                                            : contact_vertices(grid, cut))
+    points.push_back(to_model(q));
+  if (points.size() < 3)
+    throw core::GeometryError(
+        fmt::format("cut along plane {} of axis {}: fewer than 3 points "
+                    "to fit a plane",
+                    cut.plane, "xyz"[cut.axis]));
+  CutPlane plane = least_squares_plane(points);
+  // Orientation: from the below side to the above side, as the map carries the polycube axis.
+  const Vec3 across = mean_centre(to_model, grid, partition, cut.above) -
+                      mean_centre(to_model, grid, partition, cut.below);
+  if (plane.normal.dot(across) < 0) {
+    plane.normal = -plane.normal;
+    plane.offset = -plane.offset;
+  }
+  const double margin = 1e-4 * extent(points);
+  keep_boxes_on_their_sides(plane, points, side_points(to_model, grid, partition, cut, kShrink),
+                            side_points(to_model, grid, partition, cut, 0.0), margin);
+  measure(plane, points);
+  return plane;
+}
+
 std::vector<CutPlane> fit_cut_planes(const core::PolycubeMap& map, const OccupancyGrid& grid,
                                      const CutPlan& plan, double tolerance) {
   const ToModel to_model(map, tolerance);
   std::vector<CutPlane> planes;
   planes.reserve(plan.cuts.size());
-  for (std::size_t c = 0; c < plan.cuts.size(); ++c) {
-    const Cut& cut = plan.cuts[c];
-    if (cut.axis < 0) {
-      planes.emplace_back();
-      continue;
-    }
-    std::vector<Vec3> points;
-    for (const Vec3& q : cut.contacts.empty() ? section_vertices(grid, cut.axis, cut.plane)
-                                              : contact_vertices(grid, cut))
-      points.push_back(to_model(q));
-    if (points.size() < 3)
-      throw core::GeometryError(fmt::format("cut {}: fewer than 3 points to fit a plane", c));
-    CutPlane plane = least_squares_plane(points);
-    // Orientation: from the below side to the above side, as the map carries the polycube axis.
-    const Vec3 across = mean_centre(to_model, grid, plan.partition, cut.above) -
-                        mean_centre(to_model, grid, plan.partition, cut.below);
-    if (plane.normal.dot(across) < 0) {
-      plane.normal = -plane.normal;
-      plane.offset = -plane.offset;
-    }
-    const double margin = 1e-4 * extent(points);
-    keep_boxes_on_their_sides(plane, points,
-                              side_points(to_model, grid, plan.partition, cut, kShrink),
-                              side_points(to_model, grid, plan.partition, cut, 0.0), margin);
-    measure(plane, points);
-    planes.push_back(plane);
-  }
+  for (const Cut& cut : plan.cuts)
+    planes.push_back(fit_cut_plane(to_model, grid, plan.partition, cut));
   return planes;
 }
 

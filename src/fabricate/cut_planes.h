@@ -19,6 +19,7 @@
 //! its box's mapped centre: no part can come out empty.
 
 #include "core/polycube_map.h"
+#include "fabricate/corners.h"
 #include "fabricate/cut_plan.h"
 
 #include <vector>
@@ -37,6 +38,10 @@ struct CutPlane {
   int constrained = 0;
   int unkept_boxes = 0;  //!< boxes whose mapped centre no plane could keep on its side
 };
+
+//! The plane of one cut of a partition's boxes (a separation, axis -1: none).
+CutPlane fit_cut_plane(const ToModel& to_model, const OccupancyGrid& grid,
+                       const BoxPartition& partition, const Cut& cut);
 
 //! One plane per cut of the plan (same order); a separation (axis -1) gets none (points 0).
 //! \param tolerance polycube-space distance within which a point counts as inside a tet

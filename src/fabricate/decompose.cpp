@@ -133,7 +133,11 @@ Round decompose_grid(const core::PolycubeMap& map, const core::TriMesh& solid,
   }
   if (merge) merge_boxes(grid, partition, fits);
   Round r;
-  r.plan = plan_cuts(grid, partition);
+  // Prefer the cuts whose model-space plane keeps every box of the group on its side.
+  const ToModel to_model(map);
+  r.plan = plan_cuts(grid, partition, [&](const BoxPartition& p, const Cut& cut) {
+    return fit_cut_plane(to_model, grid, p, cut).unkept_boxes == 0;
+  });
   r.planes = fit_cut_planes(map, grid, r.plan);
   r.partition_seconds = clock.seconds();
   r.parts = cut_parts(solid, r.plan, r.planes, box_lookup(map, grid, r.plan.partition),
