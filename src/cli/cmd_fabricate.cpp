@@ -35,6 +35,8 @@ struct FabricateOptions {
   bool keep_failed = false;
   fabricate::DecomposeOptions decompose;
   fabricate::PrintOptions print;
+  pipeline::MillOptions mill;
+  std::vector<double> axis;
 };
 
 //! From a map: decompose, check, write into the output folder.
@@ -43,7 +45,8 @@ void fabricate_map(const FabricateOptions& o) {
   structure::validate_map(map);
   const core::TriMesh solid =
       o.solid.empty() ? core::boundary(map.model_mesh()).surface : read_target_surface(o.solid);
-  const pipeline::Fabrication f = pipeline::fabricate_solid(map, solid, o.decompose, o.print);
+  const pipeline::Fabrication f =
+      pipeline::fabricate_solid(map, solid, o.decompose, o.print, o.mill);
   if (!o.keep_failed) pipeline::check_parts(f);
   const auto files = pipeline::write_parts(o.output, f);
   print_result(pipeline::parts_json(f),
@@ -60,6 +63,11 @@ void fabricate_shape(const FabricateOptions& o) {
   run.fabricate = true;
   run.fabricate_options = o.decompose;
   run.fabricate_print = o.print;
+  run.fabricate_mill_directions = o.mill.directions;
+  if (o.mill.axis)
+    throw core::InputError(
+        "--axis applies to a map (MODEL.mesh POLYCUBE.mesh): the shape's "
+        "model frame is only known once it is read");
   run.construct.on_attempt = attempt_progress();
   const bool show = !global_options().quiet && !global_options().json;
   run.on_stage = [show](int i, int n, const std::string& name) {
@@ -83,6 +91,12 @@ void fabricate_shape(const FabricateOptions& o) {
 void run_fabricate(FabricateOptions o) {
   o.decompose.merge = !o.no_merge;
   if (!o.chamber.empty()) o.decompose.chamber = {o.chamber[0], o.chamber[1], o.chamber[2]};
+  if (!o.axis.empty()) {
+    const core::Vec3 d(o.axis[3], o.axis[4], o.axis[5]);
+    if (!(d.norm() > 0))
+      throw core::InputError("--axis: the direction (last three numbers) is zero");
+    o.mill.axis = fabricate::Axis{{o.axis[0], o.axis[1], o.axis[2]}, d.normalized()};
+  }
   if (o.polycube.empty()) {
     if (!o.solid.empty() || o.keep_failed)
       throw core::InputError("--solid and --keep-failed apply to a map (MODEL.mesh POLYCUBE.mesh)");
@@ -128,6 +142,15 @@ void register_fabricate(CLI::App& app) {
                   "the vertical")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 90.0));
+  sub->add_option("--axis", opts->axis,
+                  "Milling check: the 4-axis rotation axis as a point and a direction, PX PY PZ DX "
+                  "DY DZ (default: chosen per part, the principal direction of its normals that "
+                  "lets the tool reach most)")
+      ->expected(6);
+  sub->add_option("--directions", opts->mill.directions,
+                  "Milling check: 4-axis tool directions evenly spaced about the axis")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 3600));
   sub->add_flag("--no-merge", opts->no_merge,
                 "Keep the thesis's partition: no merging of boxes whose union is a box");
   sub->add_option(

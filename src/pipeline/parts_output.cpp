@@ -73,8 +73,9 @@ core::MeshData exploded(const Fabrication& f) {
   }
   if (volume > 0) centre /= volume;
   core::MeshData out;
-  core::Field id{"part_id", {}}, side{"flat_side", {}}, overhang{"overhang", {}}, red{"red", {}},
-      green{"green", {}}, blue{"blue", {}};
+  core::Field id{"part_id", {}}, side{"flat_side", {}}, overhang{"overhang", {}},
+      three{"not_3axis", {}}, four{"not_4axis", {}}, red{"red", {}}, green{"green", {}},
+      blue{"blue", {}};
   for (std::size_t i = 0; i < d.parts.parts.size(); ++i) {
     const fabricate::Part& p = d.parts.parts[i];
     const Vec3 shift = kExplode * (centroid(p.mesh) - centre);
@@ -92,13 +93,17 @@ core::MeshData exploded(const Fabrication& f) {
       id.values.push_back(static_cast<double>(i));
       side.values.push_back(p.triangle_side.empty() || p.triangle_side[t] < 0 ? 0.0 : 1.0);
       overhang.values.push_back(over[t]);
+      const auto& cls = f.mills[i].best_three_axis.triangle;
+      three.values.push_back(cls.empty() ? 0.0 : (cls[t] == 1 || cls[t] == 2) ? 1.0 : 0.0);
+      const auto& reached = f.mills[i].four_axis.reached;
+      four.values.push_back(reached.empty() || reached[t] ? 0.0 : 1.0);
       red.values.push_back(rgb[0]);
       green.values.push_back(rgb[1]);
       blue.values.push_back(rgb[2]);
     }
   }
-  out.cell_data = {std::move(id),  std::move(side),  std::move(overhang),
-                   std::move(red), std::move(green), std::move(blue)};
+  out.cell_data = {std::move(id),   std::move(side), std::move(overhang), std::move(three),
+                   std::move(four), std::move(red),  std::move(green),    std::move(blue)};
   return out;
 }
 
@@ -117,17 +122,61 @@ double Fabrication::parts_support_fraction() const {
   return area > 0 ? over / area : 0.0;
 }
 
+double Fabrication::parts_three_axis_fraction() const {
+  double missed = 0.0, area = 0.0;
+  for (std::size_t i = 0; i < mills.size(); ++i) {
+    area += prints[i].area;
+    missed += prints[i].area * mills[i].best_three_axis.unreachable;
+  }
+  return area > 0 ? missed / area : 0.0;
+}
+
+double Fabrication::parts_four_axis_fraction() const {
+  double missed = 0.0, area = 0.0;
+  for (std::size_t i = 0; i < mills.size(); ++i) {
+    area += prints[i].area;
+    missed += prints[i].area * mills[i].four_axis.unreached;
+  }
+  return area > 0 ? missed / area : 0.0;
+}
+
+namespace {
+
+//! 3-axis on every flat side of the part (the tool from the other side), and 4-axis.
+PartMill mill_part(const fabricate::Part& p, const MillOptions& o) {
+  PartMill m;
+  for (std::size_t s = 0; s < p.sides.size(); ++s) {
+    std::vector<int> base;
+    for (std::size_t t = 0; t < p.triangle_side.size(); ++t)
+      if (p.triangle_side[t] == static_cast<int>(s)) base.push_back(static_cast<int>(t));
+    fabricate::ThreeAxis r = fabricate::three_axis(p.mesh, p.sides[s].normal, base);
+    m.three_axis.push_back(r.unreachable);
+    if (m.best < 0 || r.unreachable < m.best_three_axis.unreachable) {
+      m.best = static_cast<int>(s);
+      m.best_three_axis = std::move(r);
+    }
+  }
+  const fabricate::Axis axis = o.axis ? *o.axis : fabricate::choose_axis(p.mesh, o.directions);
+  m.four_axis = fabricate::four_axis(p.mesh, axis, o.directions);
+  return m;
+}
+
+}  // namespace
+
 Fabrication fabricate_solid(const core::PolycubeMap& map, const core::TriMesh& solid,
                             const fabricate::DecomposeOptions& options,
-                            const fabricate::PrintOptions& print) {
+                            const fabricate::PrintOptions& print, const MillOptions& mill) {
   Fabrication f;
   f.decomposition = fabricate::decompose(map, solid, options);
   f.options = options;
   f.print = print;
   f.print.chamber = options.chamber;
   const core::Stopwatch clock;
-  for (const fabricate::Part& p : f.decomposition.parts.parts)
+  f.mill = mill;
+  for (const fabricate::Part& p : f.decomposition.parts.parts) {
     f.prints.push_back(fabricate::check_part_printing(p, f.print));
+    f.mills.push_back(p.mesh.cells.empty() ? PartMill{} : mill_part(p, mill));
+  }
   f.whole = fabricate::best_axis_standing(solid, f.print);
   f.check_seconds = clock.seconds();
   return f;
@@ -174,12 +223,29 @@ nlohmann::json parts_json(const Fabrication& f) {
     const fabricate::Box& b = d.plan.partition.boxes[static_cast<std::size_t>(p.box)];
     nlohmann::json sides = nlohmann::json::array();
     const fabricate::PartPrint& print = f.prints[i];
+    const PartMill& mill = f.mills[i];
     for (std::size_t k = 0; k < p.sides.size(); ++k)
-      sides.push_back({{"cut", p.sides[k].cut},
-                       {"normal", vec(p.sides[k].normal)},
-                       {"area", p.sides[k].area},
-                       {"fits_chamber", print.sides[k].fits},
-                       {"support_percent", percent(print.sides[k].support_fraction)}});
+      sides.push_back(
+          {{"cut", p.sides[k].cut},
+           {"normal", vec(p.sides[k].normal)},
+           {"area", p.sides[k].area},
+           {"fits_chamber", print.sides[k].fits},
+           {"three_axis_base",
+            mill.best >= 0 ? nlohmann::json(mill.best) : nlohmann::json(nullptr)},
+           {"three_axis_unreachable_percent",
+            mill.best >= 0 ? nlohmann::json(percent(mill.best_three_axis.unreachable))
+                           : nlohmann::json(nullptr)},
+           {"three_axis_occluded_percent",
+            mill.best >= 0 ? nlohmann::json(percent(mill.best_three_axis.occluded))
+                           : nlohmann::json(nullptr)},
+           {"four_axis",
+            {{"point", vec(mill.four_axis.axis.point)},
+             {"direction", vec(mill.four_axis.axis.direction)},
+             {"unreached_percent", percent(mill.four_axis.unreached)}}},
+           {"support_percent", percent(print.sides[k].support_fraction)},
+           {"three_axis_unreachable_percent",
+            k < f.mills[i].three_axis.size() ? nlohmann::json(percent(f.mills[i].three_axis[k]))
+                                             : nlohmann::json(nullptr)}});
     const std::string why = part_problem(p);
     nlohmann::json part = {
         {"file", p.mesh.cells.empty() ? nlohmann::json(nullptr) : nlohmann::json(part_file(i))},
@@ -197,6 +263,17 @@ nlohmann::json parts_json(const Fabrication& f) {
         {"problem", why.empty() ? nlohmann::json(nullptr) : nlohmann::json(why)},
         {"flat_sides", sides},
         {"base", print.best >= 0 ? nlohmann::json(print.best) : nlohmann::json(nullptr)},
+        {"three_axis_base", mill.best >= 0 ? nlohmann::json(mill.best) : nlohmann::json(nullptr)},
+        {"three_axis_unreachable_percent",
+         mill.best >= 0 ? nlohmann::json(percent(mill.best_three_axis.unreachable))
+                        : nlohmann::json(nullptr)},
+        {"three_axis_occluded_percent", mill.best >= 0
+                                            ? nlohmann::json(percent(mill.best_three_axis.occluded))
+                                            : nlohmann::json(nullptr)},
+        {"four_axis",
+         {{"point", vec(mill.four_axis.axis.point)},
+          {"direction", vec(mill.four_axis.axis.direction)},
+          {"unreached_percent", percent(mill.four_axis.unreached)}}},
         {"support_percent",
          print.best >= 0 ? nlohmann::json(percent(
                                print.sides[static_cast<std::size_t>(print.best)].support_fraction))
@@ -231,6 +308,13 @@ nlohmann::json parts_json(const Fabrication& f) {
             {"whole_support_percent", percent(f.whole.support_fraction)},
             {"whole_down", vec(f.whole.down)},
             {"parts_support_percent", percent(f.parts_support_fraction())}}},
+          {"milling",
+           {{"directions", f.mill.directions},
+            {"axis", f.mill.axis ? nlohmann::json({{"point", vec(f.mill.axis->point)},
+                                                   {"direction", vec(f.mill.axis->direction)}})
+                                 : nlohmann::json("chosen per part")},
+            {"parts_three_axis_unreachable_percent", percent(f.parts_three_axis_fraction())},
+            {"parts_four_axis_unreached_percent", percent(f.parts_four_axis_fraction())}}},
           {"parts", list}};
 }
 
@@ -240,8 +324,8 @@ std::string parts_table(const Fabrication& f) {
       "{} boxes in the polycube's partition, {} parts; solid volume {:.6g}, parts {:.6g}\n",
       d.boxes, d.parts.parts.size(), d.parts.solid_volume, d.parts.volume_sum);
   text +=
-      "  part  box  triangles      volume    size (bounding box)        sides  base  support %  "
-      "check\n";
+      "  part  box  triangles      volume    size (bounding box)        sides  base  %3DPPS   "
+      "%3AM   %4AM  check\n";
   for (std::size_t i = 0; i < d.parts.parts.size(); ++i) {
     const fabricate::Part& p = d.parts.parts[i];
     Vec3 size = Vec3::Zero();
@@ -254,16 +338,27 @@ std::string parts_table(const Fabrication& f) {
             : fmt::format(
                   "{:.2f}",
                   percent(print.sides[static_cast<std::size_t>(print.best)].support_fraction));
+    const PartMill& mill = f.mills[i];
+    const std::string three =
+        mill.best < 0 ? std::string("-")
+                      : fmt::format("{:.2f}", percent(mill.best_three_axis.unreachable));
     text += fmt::format(
-        "  {:4d} {:4d} {:10d} {:11.6g}  {:8.4g} {:8.4g} {:8.4g}  {:5d}  {:>4}  {:>9}  {}\n", i,
-        p.box, p.mesh.num_cells(), p.volume, size.x(), size.y(), size.z(), p.sides.size(),
-        print.best >= 0 ? std::to_string(print.best) : "-", support, why.empty() ? "ok" : why);
+        "  {:4d} {:4d} {:10d} {:11.6g}  {:8.4g} {:8.4g} {:8.4g}  {:5d}  {:>4}  {:>6}  {:>5}  "
+        "{:5.2f}  {}\n",
+        i, p.box, p.mesh.num_cells(), p.volume, size.x(), size.y(), size.z(), p.sides.size(),
+        print.best >= 0 ? std::to_string(print.best) : "-", support, three,
+        percent(mill.four_axis.unreached), why.empty() ? "ok" : why);
   }
   text += fmt::format(
       "support (overhang beyond {:g} degrees, % of the surface): in one piece {:.2f} "
       "(%3DPST), in parts {:.2f} (%3DPPST)\n",
       f.print.overhang_degrees, percent(f.whole.support_fraction),
       percent(f.parts_support_fraction()));
+  text += fmt::format(
+      "milling (% of the surface the tool cannot reach): 3-axis on the best side {:.2f}, 4-axis "
+      "with {} directions {:.2f}\n",
+      percent(f.parts_three_axis_fraction()), f.mill.directions,
+      percent(f.parts_four_axis_fraction()));
   return text;
 }
 

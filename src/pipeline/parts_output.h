@@ -13,15 +13,31 @@
 //! and the same table as text for the terminal.
 
 #include "fabricate/decompose.h"
+#include "fabricate/milling.h"
 #include "fabricate/printing.h"
 
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace polycube::pipeline {
+
+//! How to check milling (thesis §6.5.2-6.5.3).
+struct MillOptions {
+  int directions = 40;                  //!< 4-axis tool directions about the axis
+  std::optional<fabricate::Axis> axis;  //!< the 4-axis rotation axis; empty: chosen per part
+};
+
+//! A part milled: 3-axis on each flat side as the stock's base, the best; 4-axis about an axis.
+struct PartMill {
+  std::vector<double> three_axis;        //!< per flat side: unreachable area fraction (%3AM / 100)
+  int best = -1;                         //!< side with the least unreachable area; -1: no flat side
+  fabricate::ThreeAxis best_three_axis;  //!< on the best side (per-triangle classes)
+  fabricate::FourAxis four_axis;
+};
 
 //! A decomposition with the checks of how its parts can be made (issue 21).
 struct Fabrication {
@@ -30,16 +46,22 @@ struct Fabrication {
   fabricate::PrintOptions print;
   std::vector<fabricate::PartPrint> prints;  //!< per part: support on each flat side, the best
   fabricate::Standing whole;  //!< the solid printed in one piece on its best axis (%3DPST)
+  MillOptions mill;
+  std::vector<PartMill> mills;  //!< per part
   double check_seconds = 0.0;
 
   //! Support fraction of the parts on their best bases, area-weighted (%3DPPST / 100).
   [[nodiscard]] double parts_support_fraction() const;
+  //! Area fractions of the parts not reached in 3-axis (best sides) / 4-axis, area-weighted.
+  [[nodiscard]] double parts_three_axis_fraction() const;
+  [[nodiscard]] double parts_four_axis_fraction() const;
 };
 
 //! Decompose the solid and run the checks on its parts.
 Fabrication fabricate_solid(const core::PolycubeMap& map, const core::TriMesh& solid,
                             const fabricate::DecomposeOptions& options,
-                            const fabricate::PrintOptions& print = {});
+                            const fabricate::PrintOptions& print = {},
+                            const MillOptions& mill = {});
 
 //! Why a part fails the checks (closed, outward, free of self-intersections, not empty), or
 //! "" when it passes.

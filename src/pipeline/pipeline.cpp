@@ -219,12 +219,16 @@ std::vector<OptimizeFallback> optimize_fallbacks(int target, mesh::GridSizing si
 void fabricate_and_write(const core::PolycubeMap& map, const core::TriMesh& solid, const RunOptions& o,
                          const std::filesystem::path& dir, RunResult& r,
                          const std::function<void(const std::filesystem::path&)>& wrote) {
-  const Fabrication f = fabricate_solid(map, solid, o.fabricate_options, o.fabricate_print);
+  MillOptions mill;
+  mill.directions = o.fabricate_mill_directions;
+  const Fabrication f = fabricate_solid(map, solid, o.fabricate_options, o.fabricate_print, mill);
   r.part_boxes = f.decomposition.boxes;
   r.parts = static_cast<int>(f.decomposition.parts.parts.size());
   r.unfit_parts = f.decomposition.unfit_parts;
   r.support_whole_percent = 100.0 * f.whole.support_fraction;
   r.support_parts_percent = 100.0 * f.parts_support_fraction();
+  r.three_axis_percent = 100.0 * f.parts_three_axis_fraction();
+  r.four_axis_percent = 100.0 * f.parts_four_axis_fraction();
   check_parts(f);
   for (const auto& file : write_parts(dir, f)) wrote(file);
 }

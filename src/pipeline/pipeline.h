@@ -65,6 +65,7 @@ struct RunOptions {
   bool fabricate = false;
   fabricate::DecomposeOptions fabricate_options;
   fabricate::PrintOptions fabricate_print;  //!< the printing check of the parts
+  int fabricate_mill_directions = 40;        //!< the 4-axis milling check's tool directions
   //! Called when a stage starts: (1-based index, number of stages, name).
   std::function<void(int, int, const std::string&)> on_stage;
   //! Fault injection, for tests of the failure handling only (the hidden `--inject-failure`
@@ -132,6 +133,8 @@ struct RunResult {
   int unfit_parts = -1;                //!< parts that fit the chamber on none of their flat sides
   double support_whole_percent = -1;   //!< support printing the solid in one piece (%3DPST)
   double support_parts_percent = -1;   //!< support printing the parts on their bases (%3DPPST)
+  double three_axis_percent = -1;      //!< parts' surface no 3-axis tool reaches on the best side
+  double four_axis_percent = -1;       //!< parts' surface no 4-axis direction reaches
   double msj = -2, asj = -2;           //!< final hex mesh
   int inverted = -1;                   //!< final hex mesh
   int final_domains = -1;              //!< #D of the final hex mesh
