@@ -122,22 +122,23 @@ double Fabrication::parts_support_fraction() const {
   return area > 0 ? over / area : 0.0;
 }
 
-double Fabrication::parts_three_axis_fraction() const {
-  double missed = 0.0, area = 0.0;
-  for (std::size_t i = 0; i < mills.size(); ++i) {
-    area += prints[i].area;
-    missed += prints[i].area * mills[i].best_three_axis.unreachable;
+//! Area-weighted mean over the parts of a per-part fraction.
+template <class Fraction>
+double area_weighted(const Fabrication& f, Fraction fraction) {
+  double sum = 0.0, area = 0.0;
+  for (std::size_t i = 0; i < f.mills.size(); ++i) {
+    area += f.prints[i].area;
+    sum += f.prints[i].area * fraction(f.mills[i]);
   }
-  return area > 0 ? missed / area : 0.0;
+  return area > 0 ? sum / area : 0.0;
+}
+
+double Fabrication::parts_three_axis_fraction() const {
+  return area_weighted(*this, [](const PartMill& m) { return m.best_three_axis.unreachable; });
 }
 
 double Fabrication::parts_four_axis_fraction() const {
-  double missed = 0.0, area = 0.0;
-  for (std::size_t i = 0; i < mills.size(); ++i) {
-    area += prints[i].area;
-    missed += prints[i].area * mills[i].four_axis.unreached;
-  }
-  return area > 0 ? missed / area : 0.0;
+  return area_weighted(*this, [](const PartMill& m) { return m.four_axis.unreached; });
 }
 
 namespace {
