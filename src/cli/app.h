@@ -95,5 +95,6 @@ void register_optimize(CLI::App& app);
 void register_pad(CLI::App& app);
 void register_run(CLI::App& app);
 void register_fabricate(CLI::App& app);
+void register_check_fab(CLI::App& app);
 
 }  // namespace polycube::cli

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   register_pad(app);
   register_run(app);
   register_fabricate(app);
+  register_check_fab(app);
 
   app.parse_complete_callback(setup_logging_and_progress);
 

@@ -141,9 +141,6 @@ double Fabrication::parts_four_axis_fraction() const {
   return area_weighted(*this, [](const PartMill& m) { return m.four_axis.unreached; });
 }
 
-namespace {
-
-//! 3-axis on every flat side of the part (the tool from the other side), and 4-axis.
 PartMill mill_part(const fabricate::Part& p, const MillOptions& o) {
   PartMill m;
   for (std::size_t s = 0; s < p.sides.size(); ++s) {
@@ -161,8 +158,6 @@ PartMill mill_part(const fabricate::Part& p, const MillOptions& o) {
   m.four_axis = fabricate::four_axis(p.mesh, axis, o.directions);
   return m;
 }
-
-}  // namespace
 
 Fabrication fabricate_solid(const core::PolycubeMap& map, const core::TriMesh& solid,
                             const fabricate::DecomposeOptions& options,

@@ -39,6 +39,10 @@ struct PartMill {
   fabricate::FourAxis four_axis;
 };
 
+//! 3-axis on every flat side of the part (the stock on it, the tool from the other side), the
+//! best side, and 4-axis about the given axis or the part's chosen one.
+PartMill mill_part(const fabricate::Part& part, const MillOptions& options);
+
 //! A decomposition with the checks of how its parts can be made (issue 21).
 struct Fabrication {
   fabricate::Decomposition decomposition;

@@ -217,6 +217,32 @@ TEST(FabricateCli, RunWithFabricateWritesThePartsBesideTheMesh) {
   EXPECT_TRUE(fs::exists(d / "out" / "hex.mesh"));
 }
 
+TEST(FabricateCli, CheckFabFindsTheFlatSidesOfATAndItsBestBase) {
+  // A T of 4 unit cubes (the stem under the bar), written as a surface made elsewhere.
+  core::HexMesh h = test::hex_grid(3, 1, 2);
+  h.cells.erase(h.cells.begin() + 2);  // cell (2, 0, 0)
+  h.cells.erase(h.cells.begin());      // cell (0, 0, 0)
+  const fs::path dir = fs::path(::testing::TempDir()) / "check_fab";
+  fs::create_directories(dir);
+  io::write_mesh(dir / "t.stl", core::to_mesh_data(core::boundary(test::tetrahedralize(h)).surface));
+  const auto r = test::run_cli("--json check-fab " + (dir / "t.stl").string() + " --vtk " +
+                               (dir / "t.vtk").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["flat_sides"].size(), 9u);  // z = 0, 1, 2; x = 0, 1, 2, 3; y = 0, 1
+  double area = 0;
+  for (const auto& s : j["flat_sides"]) area += s["area"].get<double>();
+  EXPECT_NEAR(area, 18.0, 1e-5);
+  // Best: lying on its face (no support, the largest such side).
+  const auto& best = j["flat_sides"][j["print_base"].get<int>()];
+  EXPECT_NEAR(std::abs(best["normal"][1].get<double>()), 1.0, 1e-6);
+  EXPECT_EQ(best["support_percent"].get<double>(), 0.0);
+  EXPECT_EQ(j["four_axis"]["unreached_percent"].get<double>(), 0.0);
+  EXPECT_EQ(io::read_mesh(dir / "t.vtk").cell_data.size(), 4u);
+  const auto bad = test::run_cli("check-fab /nonexistent.stl");
+  EXPECT_EQ(bad.exit_code, 2);
+}
+
 TEST(FabricateCli, AMissingMapIsBadInput) {
   const auto r =
       test::run_cli("fabricate /nonexistent/model.mesh /nonexistent/polycube.mesh -o /tmp/x");
