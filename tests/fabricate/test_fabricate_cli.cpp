@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -29,6 +30,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
+//! A fresh folder of this test process: ctest runs the tests of this file as parallel
+//! processes, so a fixed name would let one process delete another's outputs.
+fs::path fresh_dir(const std::string& name) {
+  const fs::path d = fs::path(::testing::TempDir()) / (name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
 double enclosed_volume(const core::TriMesh& m) {
   double v = 0;
   for (const auto& t : m.cells) v += m.points[t[0]].dot(m.points[t[1]].cross(m.points[t[2]])) / 6.0;
@@ -37,9 +47,7 @@ double enclosed_volume(const core::TriMesh& m) {
 
 TEST(FabricateCli, TheTIsCutIntoTwoPartsWrittenAsStlAndJson) {
   const test::AffineT t = test::affine_t();
-  const fs::path dir = fs::path(::testing::TempDir()) / "fabricate_t";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = fresh_dir("fabricate_t");
   io::write_polycube_map(dir / "model.mesh", dir / "polycube.mesh", t.map);
   const auto r =
       test::run_cli("--json fabricate " + (dir / "model.mesh").string() + " " +
@@ -114,9 +122,7 @@ std::pair<int, int> prusa_manifold(const fs::path& file) {
 //! The flange sample's parts, made once for the tests below (construct + simplify + cut).
 const fs::path& flange_parts() {
   static const fs::path dir = [] {
-    const fs::path d = fs::path(::testing::TempDir()) / "fabricate_flange";
-    fs::remove_all(d);
-    fs::create_directories(d);
+    const fs::path d = fresh_dir("fabricate_flange");
     test::run_cli("sample flange -o " + (d / "flange.obj").string());
     const auto r = test::run_cli("-q fabricate " + (d / "flange.obj").string() + " -o " +
                                  (d / "out").string());
@@ -204,9 +210,7 @@ TEST(FabricateCli, AChamberNothingFitsIsRefusedWithTheRemedy) {
 }
 
 TEST(FabricateCli, RunWithFabricateWritesThePartsBesideTheMesh) {
-  const fs::path d = fs::path(::testing::TempDir()) / "run_fabricate";
-  fs::remove_all(d);
-  fs::create_directories(d);
+  const fs::path d = fresh_dir("run_fabricate");
   test::run_cli("sample l-bracket -o " + (d / "l.obj").string());
   const auto r = test::run_cli("-q --json run " + (d / "l.obj").string() + " -o " +
                                (d / "out").string() + " --hexes 500 --no-optimize --fabricate");
@@ -222,8 +226,7 @@ TEST(FabricateCli, CheckFabFindsTheFlatSidesOfATAndItsBestBase) {
   core::HexMesh h = test::hex_grid(3, 1, 2);
   h.cells.erase(h.cells.begin() + 2);  // cell (2, 0, 0)
   h.cells.erase(h.cells.begin());      // cell (0, 0, 0)
-  const fs::path dir = fs::path(::testing::TempDir()) / "check_fab";
-  fs::create_directories(dir);
+  const fs::path dir = fresh_dir("check_fab");
   io::write_mesh(dir / "t.stl", core::to_mesh_data(core::boundary(test::tetrahedralize(h)).surface));
   const auto r = test::run_cli("--json check-fab " + (dir / "t.stl").string() + " --vtk " +
                                (dir / "t.vtk").string());
