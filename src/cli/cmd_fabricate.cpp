@@ -49,11 +49,12 @@ void fabricate_map(const FabricateOptions& o) {
       pipeline::fabricate_solid(map, solid, o.decompose, o.print, o.mill);
   if (!o.keep_failed) pipeline::check_parts(f);
   const auto files = pipeline::write_parts(o.output, f);
-  print_result(pipeline::parts_json(f),
-               pipeline::parts_table(f) + fmt::format("wrote {} files to {} (parts.3mf opens the "
-                                                      "assembly in a slicer, exploded.vtk in "
-                                                      "ParaView)\n",
-                                                      files.size(), o.output));
+  print_result(
+      pipeline::parts_json(f),
+      pipeline::parts_table(f) + fmt::format("wrote {} files to {} (print/ holds each part "
+                                             "on its base for a slicer, parts.3mf the "
+                                             "assembly, exploded.vtk opens in ParaView)\n",
+                                             files.size(), o.output));
 }
 
 //! From a shape: run's stages input, construct, simplify, fabricate.
@@ -125,7 +126,8 @@ void register_fabricate(CLI::App& app) {
       "Cut a solid into parts with flat sides along the boxes of its polycube (thesis ch. 6), for "
       "3D printing or milling in parts: box partition at the concave edges, merging, exact cuts by "
       "planes. From a surface or tet mesh the map is built first (construct, simplify). Writes "
-      "part_NN.stl, parts.3mf (the assembly), exploded.ply/.vtk and parts.json");
+      "part_NN.stl, print/part_NN.stl (each on its best base), parts.3mf (the assembly), "
+      "exploded.ply/.vtk and parts.json");
   sub->add_option("input", opts->input,
                   "A closed surface (.obj .off .stl .ply) or tet mesh to build the map of, or the "
                   "model-space tet mesh of a map (simplify/model.mesh of run) followed by POLYCUBE")

@@ -81,6 +81,23 @@ PartPrint check_part_printing(const Part& part, const PrintOptions& options) {
   return out;
 }
 
+core::TriMesh stand_on_bed(const core::TriMesh& mesh, const Vec3& down) {
+  const Vec3 d = down.normalized();
+  // FromTwoVectors picks an arbitrary axis for opposite vectors; up-facing bases turn about x.
+  const Eigen::Matrix3d turn =
+      d.z() > 1.0 - 1e-12
+          ? Eigen::Matrix3d(Eigen::AngleAxisd(M_PI, Vec3::UnitX()))
+          : Eigen::Quaterniond::FromTwoVectors(d, -Vec3::UnitZ()).toRotationMatrix();
+  core::TriMesh out = mesh;
+  for (Vec3& p : out.points) p = turn * p;
+  if (out.points.empty()) return out;
+  const core::BoundingBox box = core::bounding_box(out.points);
+  const Vec3 shift(-(box.min.x() + box.max.x()) / 2, -(box.min.y() + box.max.y()) / 2,
+                   -box.min.z());
+  for (Vec3& p : out.points) p += shift;
+  return out;
+}
+
 Standing best_axis_standing(const core::TriMesh& solid, const PrintOptions& options) {
   Standing best;
   best.support_fraction = std::numeric_limits<double>::infinity();

@@ -48,6 +48,11 @@ struct PartPrint {
 };
 PartPrint check_part_printing(const Part& part, const PrintOptions& options);
 
+//! The part turned to stand on `down` (its outward normal pointing to -z) with its lowest point at
+//! z = 0 and its bounding box centred on the z axis: the file a slicer takes as it is. Turned by
+//! the shortest rotation, so a part already standing upright only moves.
+core::TriMesh stand_on_bed(const core::TriMesh& mesh, const core::Vec3& down);
+
 //! A solid printed in one piece on the best of the six directions of its bounding box (the
 //! thesis's %3DPST): the least support fraction.
 Standing best_axis_standing(const core::TriMesh& solid, const PrintOptions& options);

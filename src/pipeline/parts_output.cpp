@@ -56,6 +56,9 @@ std::array<std::uint8_t, 3> part_colour(std::size_t i) {
 
 std::string part_file(std::size_t i) { return fmt::format("part_{:02d}.stl", i); }
 
+//! The part standing on its best base, ready for a slicer.
+std::string print_file(std::size_t i) { return fmt::format("print/part_{:02d}.stl", i); }
+
 Vec3 centroid(const core::TriMesh& m) {
   Vec3 c = Vec3::Zero();
   for (const Vec3& p : m.points) c += p;
@@ -245,6 +248,8 @@ nlohmann::json parts_json(const Fabrication& f) {
     const std::string why = part_problem(p);
     nlohmann::json part = {
         {"file", p.mesh.cells.empty() ? nlohmann::json(nullptr) : nlohmann::json(part_file(i))},
+        {"print_file", p.mesh.cells.empty() || print.best < 0 ? nlohmann::json(nullptr)
+                                                              : nlohmann::json(print_file(i))},
         {"box", p.box},
         {"box_polycube",
          {{"lo", vec(fabricate::box_corner(d.grid, b, 0, 0, 0))},
@@ -367,8 +372,15 @@ std::vector<fs::path> write_parts(const fs::path& dir, const Fabrication& f) {
     const fabricate::Part& p = d.parts.parts[i];
     if (p.mesh.cells.empty()) continue;
     files.push_back(dir / part_file(i));
-    io::write_mesh(files.back(), core::to_mesh_data(p.mesh));
+    io::write_mesh(files.back(), core::to_mesh_data(p.mesh), {.binary = true});
     objects.push_back({fmt::format("part {:02d}", i), p.mesh, part_colour(i)});
+    const int base = f.prints[i].best;
+    if (base < 0) continue;
+    files.push_back(dir / print_file(i));
+    fs::create_directories(files.back().parent_path());
+    const fabricate::Standing& on = f.prints[i].sides[static_cast<std::size_t>(base)];
+    io::write_mesh(files.back(), core::to_mesh_data(fabricate::stand_on_bed(p.mesh, on.down)),
+                   {.binary = true});
   }
   if (!objects.empty()) {
     files.push_back(dir / "parts.3mf");

@@ -2,6 +2,7 @@
 //! \file parts_output.h
 //! \brief The files of a decomposition into parts (thesis ch. 6), written into one folder:
 //!   part_NN.stl       one binary STL per part, in place (model units)
+//!   print/part_NN.stl the part standing on its best base on the bed (z = 0), ready to slice
 //!   parts.3mf         the assembly: one object per part, in place, each with its colour
 //!   exploded.ply      the parts moved apart from the solid's centre, a colour per part
 //!                     (face properties red, green, blue) and the part id (MeshLab, ParaView)

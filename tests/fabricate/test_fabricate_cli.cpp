@@ -89,6 +89,13 @@ nlohmann::json expect_outputs(const fs::path& dir) {
     EXPECT_FALSE(p["flat_sides"].empty()) << p["file"];
     total += enclosed_volume(m);
     triangles += m.cells.size();
+    if (p["print_file"].is_null()) continue;
+    // Print-ready: the same solid moved rigidly onto the bed.
+    const core::TriMesh on_bed = io::read_surface(dir / p["print_file"].get<std::string>());
+    EXPECT_EQ(on_bed.cells.size(), m.cells.size()) << p["print_file"];
+    EXPECT_NEAR(enclosed_volume(on_bed), enclosed_volume(m), 1e-5 * enclosed_volume(m));
+    const core::BoundingBox box = core::bounding_box(on_bed.points);
+    EXPECT_NEAR(box.min.z(), 0.0, 1e-5 * (box.max - box.min).norm()) << p["print_file"];
   }
   const double solid = j["solid_volume"].get<double>();
   EXPECT_NEAR(total, solid, 1e-5 * solid);  // STL floats
@@ -189,8 +196,9 @@ TEST(FabricateCli, TheSameMapGivesTheSameFilesByteForByte) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
   int compared = 0;
-  for (const auto& entry : fs::directory_iterator(a)) {
-    const std::string name = entry.path().filename().string();
+  for (const auto& entry : fs::recursive_directory_iterator(a)) {
+    if (!entry.is_regular_file()) continue;
+    const fs::path name = fs::relative(entry.path(), a);
     if (name == "parts.json") continue;  // holds the times
     EXPECT_EQ(bytes(entry.path()), bytes(b / name)) << name;
     ++compared;
@@ -227,7 +235,8 @@ TEST(FabricateCli, CheckFabFindsTheFlatSidesOfATAndItsBestBase) {
   h.cells.erase(h.cells.begin() + 2);  // cell (2, 0, 0)
   h.cells.erase(h.cells.begin());      // cell (0, 0, 0)
   const fs::path dir = fresh_dir("check_fab");
-  io::write_mesh(dir / "t.stl", core::to_mesh_data(core::boundary(test::tetrahedralize(h)).surface));
+  io::write_mesh(dir / "t.stl",
+                 core::to_mesh_data(core::boundary(test::tetrahedralize(h)).surface));
   const auto r = test::run_cli("--json check-fab " + (dir / "t.stl").string() + " --vtk " +
                                (dir / "t.vtk").string());
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -82,5 +82,29 @@ TEST(Printing, ASolidInOnePieceTakesItsBestAxis) {
   EXPECT_EQ(s.down.x(), 0.0);  // on its face or upside down, not on an end (1 square)
 }
 
+TEST(Printing, APartStoodOnItsBaseSitsOnTheBedWithTheSameOverhangs) {
+  const core::TriMesh t = t_shape();
+  const Vec3 tilted = Vec3(1, -2, 0.5).normalized();
+  for (const Vec3& down :
+       {Vec3(-Vec3::UnitZ()), Vec3(Vec3::UnitZ()), Vec3(Vec3::UnitX()), tilted}) {
+    const core::TriMesh on = fabricate::stand_on_bed(t, down);
+    ASSERT_EQ(on.cells, t.cells);
+    const core::BoundingBox box = core::bounding_box(on.points);
+    EXPECT_NEAR(box.min.z(), 0.0, 1e-12);
+    EXPECT_NEAR(box.min.x() + box.max.x(), 0.0, 1e-12);
+    EXPECT_NEAR(box.min.y() + box.max.y(), 0.0, 1e-12);
+    // A rigid motion: every edge keeps its length.
+    for (const auto& c : t.cells)
+      for (int e = 0; e < 3; ++e)
+        EXPECT_NEAR((on.points[c[e]] - on.points[c[(e + 1) % 3]]).norm(),
+                    (t.points[c[e]] - t.points[c[(e + 1) % 3]]).norm(), 1e-12);
+    EXPECT_EQ(fabricate::overhanging(on, -Vec3::UnitZ(), 45), fabricate::overhanging(t, down, 45))
+        << down.transpose();
+  }
+  // Stood on its stem's end (down = -z): the bar's two arms need support, as in the T above.
+  const core::TriMesh upright = fabricate::stand_on_bed(t, -Vec3::UnitZ());
+  EXPECT_NEAR(fabricate::stand(upright, -Vec3::UnitZ(), {}).overhang_area, 2.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace polycube
