@@ -59,6 +59,8 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
       {"optimize_fallback", r.optimize_fallback},
       {"optimize_tried", r.optimize_tried},
       {"padding", {{"applied", r.padding},
+                   {"msj_unpadded", r.msj_unpadded},
+                   {"msj_padded", r.msj_padded},
                    {"added_hexes", r.padding_added},
                    {"singular_vertices_before", r.singular_vertices_before},
                    {"singular_edges_before", r.singular_edges_before},
@@ -126,7 +128,13 @@ std::string summary_table(const pipeline::RunResult& r) {
                          : r.optimize_fallback.ends_with("padding") ? ", fell back to " + r.optimize_fallback + ": " + padding_summary(r)
                                                                    : ", regridded: " + r.optimize_fallback);
     else if (s.name == "pad")
-      what = padding_summary(r);
+      what = r.padding_added < 0 ? r.padding
+                                 : fmt::format("{}: {}{}", r.padding, padding_summary(r),
+                                               r.padding_plan_seconds >= 0
+                                                   ? fmt::format(", |HF| {}, plan {:.1f} s{}", r.padding_hard_facets,
+                                                                 r.padding_plan_seconds,
+                                                                 r.padding_plan_optimal ? "" : " (not proven optimal)")
+                                                   : std::string());
     else if (s.name == "quality")
       what = fmt::format("mSJ {} aSJ {}, {} inverted, #D {}, Hausdorff {} of the bbox diagonal", figure(r.msj),
                          figure(r.asj), count(r.inverted), count(r.final_domains),
@@ -202,6 +210,12 @@ void register_run(CLI::App& app) {
                                                       {"selective", padding::PaddingMode::Selective}},
           CLI::ignore_case))
       ->default_str("none");
+  sub->add_option("--padding-min-sj", opts->run.padding_usable_min_sj,
+                  "The padded mesh replaces the optimized one when its minimum scaled Jacobian is at least the "
+                  "unpadded mesh's or at least this; otherwise the unpadded mesh is kept (the padded one is still "
+                  "written)")
+      ->check(CLI::Range(-1.0, 1.0))
+      ->capture_default_str();
   sub->add_flag("--fabricate", opts->run.fabricate,
                 "Also cut the input solid into parts along the simplified map (thesis ch. 6): "
                 "parts/ with part_NN.stl, parts.3mf, exploded.ply/.vtk, parts.json");

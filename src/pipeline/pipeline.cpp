@@ -187,6 +187,12 @@ std::optional<padding::PadResult> pad_and_record(const core::HexMesh& hex, const
   return p;
 }
 
+//! Whether a requested padding is kept (RunOptions::padding_usable_min_sj).
+bool padding_pays(const padding::PadResult& p, const RunOptions& o) {
+  const double after = p.after.scaled_jacobian.min;
+  return after >= p.before.scaled_jacobian.min || after >= o.padding_usable_min_sj;
+}
+
 //! Forget a padded mesh that is not kept (only an injected failure can reject a mesh that
 //! passed the check, the only one pad_and_record writes).
 void discard_padded(const std::filesystem::path& out_dir, RunResult& r) {
@@ -407,6 +413,15 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
       }
       if (!p->check.ok())
         throw core::GeometryError("the padded hex mesh fails the global fold-over check: " + fold_summary(p->check));
+      r.msj_unpadded = p->before.scaled_jacobian.min;
+      r.msj_padded = p->after.scaled_jacobian.min;
+      if (!padding_pays(*p, o)) {
+        r.padding += fmt::format(" (not kept: mSJ {:.3f} -> {:.3f})", r.msj_unpadded, r.msj_padded);
+        core::logger().warn("pad: the padded mesh's mSJ {:.3f} is below the unpadded {:.3f} and {:g}; keeping the "
+                            "unpadded mesh (the padded one is in hex_padded.mesh)",
+                            r.msj_padded, r.msj_unpadded, o.padding_usable_min_sj);
+        return;
+      }
       hex = std::move(p->mesh);
     });
 

@@ -55,6 +55,10 @@ struct RunOptions {
   //! Padding after the optimization (stage "pad"): none, a layer under the whole boundary, or
   //! selective (where the map distorts the shape).
   padding::PaddingMode padding = padding::PaddingMode::None;
+  //! The padded mesh replaces the optimized one only when its mSJ stays at or above the
+  //! unpadded mesh's or at or above this (padding is for the boundary hexes; it must not cost
+  //! the quality a mesh is used for); otherwise it is still written (hex_padded.*) but not used.
+  double padding_usable_min_sj = 0.5;
   padding::PadOptions padding_options;
   padding::AnalysisOptions padding_analysis;    //!< selective padding's mapping analysis
   padding::SelectionOptions padding_selection;  //!< selective padding's binary problem
@@ -118,8 +122,10 @@ struct RunResult {
   std::string optimize_fallback = "none";   //!< the gridding whose optimized mesh passed ("none": the first)
   std::vector<std::string> optimize_tried;  //!< why the earlier griddings' results failed
   // padding (requested, or the optimize stage's fallback)
-  //! "none", "global", "selective", "none (nothing to pad)", or "<mode> (optimize fallback)"
+  //! "none", "global", "selective", "none (nothing to pad)", "<mode> (optimize fallback)", or
+  //! "<mode> (not kept: ...)" when the padded mesh lost quality (see kPaddingUsableMinSJ)
   std::string padding = "none";
+  double msj_unpadded = -2, msj_padded = -2;  //!< requested padding: mSJ before and after
   int padding_hard_facets = -1;        //!< selective: |HF|
   double padding_plan_seconds = -1;    //!< selective: mapping analysis + binary problem
   bool padding_plan_optimal = false;   //!< selective: the binary problem was solved to optimality

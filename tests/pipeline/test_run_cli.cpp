@@ -150,7 +150,7 @@ class RunBox : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = temp_dir("box");
     write_surface(dir_ / "box.obj", test::make_box(1.0, 2.0, 1.5, 4));
-    result_ = run("\"" + (dir_ / "box.obj").string() + "\" -o \"" + (dir_ / "out").string() + "\" --hexes 3000");
+    result_ = run(fmt::format("\"{}\" -o \"{}\" --hexes 3000", (dir_ / "box.obj").string(), (dir_ / "out").string()));
   }
   static fs::path dir_;
   static CliResult result_;
@@ -303,7 +303,7 @@ TEST_F(RunBox, SameInputSameOutput) {
   ASSERT_EQ(result_.exit_code, 0) << result_.err;
   const fs::path again = dir_ / "again";
   fs::create_directories(again);
-  const CliResult r = run("\"" + (dir_ / "box.obj").string() + "\" -o \"" + (again / "out").string() + "\" --hexes 3000");
+  const CliResult r = run(fmt::format("\"{}\" -o \"{}\" --hexes 3000", (dir_ / "box.obj").string(), (again / "out").string()));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(slurp(dir_ / "out" / "hex_optimized.mesh"), slurp(again / "out" / "hex_optimized.mesh"));
   EXPECT_EQ(slurp(dir_ / "out" / "simplify" / "polycube.mesh"), slurp(again / "out" / "simplify" / "polycube.mesh"));
@@ -314,7 +314,7 @@ TEST(RunCli, OpenSurfaceStopsWithExitTwoBeforeAnyHeavyWork) {
   auto m = test::make_box(1.0, 1.0, 1.0, 2);
   m.cells.pop_back();
   write_surface(dir / "open.obj", m);
-  const CliResult r = run("\"" + (dir / "open.obj").string() + "\" -o \"" + (dir / "out").string() + "\"");
+  const CliResult r = run(fmt::format("\"{}\" -o \"{}\"", (dir / "open.obj").string(), (dir / "out").string()));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("stage input failed"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("open"), std::string::npos) << r.err;
@@ -334,7 +334,7 @@ TEST(RunCli, NonManifoldSurfaceStopsWithExitTwo) {
   m.cells.push_back({a, b, c});
   m.cells.push_back({b, a, c});
   write_surface(dir / "fin.obj", m);
-  const CliResult r = run("\"" + (dir / "fin.obj").string() + "\" -o \"" + (dir / "out").string() + "\"");
+  const CliResult r = run(fmt::format("\"{}\" -o \"{}\"", (dir / "fin.obj").string(), (dir / "out").string()));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("manifold"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "out" / "construct"));
@@ -484,6 +484,23 @@ TEST(RunCli, GlobalPaddingOnRequestAddsThePadStage) {
   bool pad_stage = false;
   for (const auto& s : j["stages"]) pad_stage = pad_stage || (s["stage"] == "pad" && s["ok"].get<bool>());
   EXPECT_TRUE(pad_stage);
+}
+
+// Padding must pay for itself: a box's optimized grid is perfect (mSJ 1), its padded corners are
+// not, so asking for no loss below 1 keeps the unpadded mesh; the padded one is still written.
+TEST(RunCli, APaddedMeshThatLosesQualityIsNotKept) {
+  const fs::path dir = temp_dir("padding_not_kept");
+  write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
+  const CliResult r = run(dir / "box.obj", dir / "out", "--hexes 200 --padding global --padding-min-sj 1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = read_report(dir / "out");
+  const double before = j["padding"]["msj_unpadded"].get<double>(), after = j["padding"]["msj_padded"].get<double>();
+  ASSERT_LT(after, before);
+  EXPECT_EQ(j["padding"]["applied"].get<std::string>().rfind("global (not kept", 0), 0u) << j["padding"]["applied"];
+  EXPECT_NEAR(j["final"]["msj"].get<double>(), before, 1e-12);
+  EXPECT_EQ(static_cast<int>(io::read_mesh(dir / "out" / "hex_quality.vtk").hexes.size()), j["hexes"].get<int>());
+  EXPECT_TRUE(fs::exists(dir / "out" / "hex_padded.mesh"));
+  EXPECT_NE(r.out.find("not kept"), std::string::npos) << r.out;
 }
 
 // The lattice of 2e9 hexes is beyond the gridding's bound (mesh/grid.h, max_lattice_points):
