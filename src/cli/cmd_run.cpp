@@ -199,7 +199,7 @@ void register_run(CLI::App& app) {
                   "Gridding: cells per interval between chart planes, 'uniform' (one scale) or 'map' (follows the "
                   "map's stretch, for hexes of more even size in model space)");
   sub->add_flag("--no-simplify", opts->no_simplify, "Mesh the constructed map without corner alignment");
-  sub->add_flag("--no-optimize", opts->no_optimize, "Keep the gridded hex mesh as it is");
+  sub->add_flag("--no-optimize", opts->no_optimize, "Keep the gridded hex mesh as it is (and do not pad it)");
   sub->add_option("--padding", opts->run.padding,
                   "After optimizing: 'none', 'global' (a layer of hexes under the whole boundary) or 'selective' "
                   "(only where the polycube map distorts the shape; thesis ch. 4); the padded mesh is optimized again "
@@ -209,7 +209,7 @@ void register_run(CLI::App& app) {
                                                       {"global", padding::PaddingMode::Global},
                                                       {"selective", padding::PaddingMode::Selective}},
           CLI::ignore_case))
-      ->default_str("none");
+      ->default_str("selective");
   sub->add_option("--padding-min-sj", opts->run.padding_usable_min_sj,
                   "The padded mesh replaces the optimized one when its minimum scaled Jacobian is at least the "
                   "unpadded mesh's or at least this; otherwise the unpadded mesh is kept (the padded one is still "

@@ -187,6 +187,9 @@ std::optional<padding::PadResult> pad_and_record(const core::HexMesh& hex, const
   return p;
 }
 
+//! Whether the pad stage runs: padding asked for (selective by default) on an optimized mesh.
+bool pads(const RunOptions& o) { return o.hexmesh && o.optimize && o.padding != padding::PaddingMode::None; }
+
 //! Whether a requested padding is kept (RunOptions::padding_usable_min_sj).
 bool padding_pays(const padding::PadResult& p, const RunOptions& o) {
   const double after = p.after.scaled_jacobian.min;
@@ -264,7 +267,7 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
 
   const int count = 2 + (o.simplify ? 1 : 0) + (o.fabricate ? 1 : 0) +
                     (o.hexmesh ? 2 + (o.optimize ? 1 : 0) +
-                                     (o.padding != padding::PaddingMode::None ? 1 : 0)
+                                     (pads(o) ? 1 : 0)
                                : 0);
   Runner run(r, o, count);
   auto wrote = [&](const fs::path& p) { r.files.push_back(p.string()); };
@@ -402,17 +405,30 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
       add_file(out_dir / "hex_optimized.mesh");
     });
 
-  // 6. padding on request (unless the optimize stage has padded already)
-  if (o.padding != padding::PaddingMode::None && r.ok() && r.padding == "none")
+  // 6. padding (selective by default; unless the optimize stage has padded already). A padding
+  //    that fails, or costs quality (padding_pays), leaves the optimized mesh as the result: the
+  //    mesh was valid before it, and padding is an improvement, not a step the result needs.
+  if (pads(o) && r.ok() && r.padding == "none")
     run.stage("pad", [&] {
-      std::optional<padding::PadResult> p =
-          pad_and_record(hex, in, o, o.padding, padding::mode_name(o.padding), out_dir, r, add_file);
+      const std::string mode = padding::mode_name(o.padding);
+      std::optional<padding::PadResult> p;
+      std::string failure;
+      try {
+        p = pad_and_record(hex, in, o, o.padding, mode, out_dir, r, add_file);
+        if (p && !p->check.ok()) failure = "the padded mesh fails the global fold-over check: " + fold_summary(p->check);
+      } catch (const core::Error& e) {
+        failure = e.what();
+      }
+      if (!failure.empty()) {
+        discard_padded(out_dir, r);
+        r.padding = fmt::format("{} (failed, not kept: {})", mode, failure);
+        core::logger().warn("pad: {} padding failed ({}); keeping the optimized mesh", mode, failure);
+        return;
+      }
       if (!p) {
         r.padding = "none (nothing to pad)";
         return;
       }
-      if (!p->check.ok())
-        throw core::GeometryError("the padded hex mesh fails the global fold-over check: " + fold_summary(p->check));
       r.msj_unpadded = p->before.scaled_jacobian.min;
       r.msj_padded = p->after.scaled_jacobian.min;
       if (!padding_pays(*p, o)) {

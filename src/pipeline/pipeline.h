@@ -54,7 +54,7 @@ struct RunOptions {
   bool optimize_fallbacks = true;
   //! Padding after the optimization (stage "pad"): none, a layer under the whole boundary, or
   //! selective (where the map distorts the shape).
-  padding::PaddingMode padding = padding::PaddingMode::None;
+  padding::PaddingMode padding = padding::PaddingMode::Selective;
   //! The padded mesh replaces the optimized one only when its mSJ stays at or above the
   //! unpadded mesh's or at or above this (padding is for the boundary hexes; it must not cost
   //! the quality a mesh is used for); otherwise it is still written (hex_padded.*) but not used.

@@ -160,7 +160,7 @@ CliResult RunBox::result_;
 
 TEST_F(RunBox, EveryStageSucceedsAndTheSummaryNamesThem) {
   ASSERT_EQ(result_.exit_code, 0) << result_.err;
-  for (const char* stage : {"construct", "simplify", "hexmesh", "optimize", "quality", "total"})
+  for (const char* stage : {"construct", "simplify", "hexmesh", "optimize", "pad", "quality", "total"})
     EXPECT_NE(result_.out.find(std::string("| ") + stage + " |"), std::string::npos) << result_.out;
 }
 
@@ -170,7 +170,9 @@ TEST_F(RunBox, ReportRecordsEveryStageAndListsExactlyTheFilesWritten) {
   const auto j = read_report(out);
   EXPECT_TRUE(j["ok"].get<bool>());
   EXPECT_FALSE(j.contains("failure"));
-  const std::vector<std::string> order{"input", "construct", "simplify", "hexmesh", "optimize", "quality"};
+  // Selective padding by default: a box's map does not distort it, so nothing is padded.
+  const std::vector<std::string> order{"input", "construct", "simplify", "hexmesh", "optimize", "pad", "quality"};
+  EXPECT_EQ(j["padding"]["applied"], "none (nothing to pad)");
   ASSERT_EQ(j["stages"].size(), order.size());
   for (std::size_t i = 0; i < order.size(); ++i) {
     EXPECT_EQ(j["stages"][i]["stage"], order[i]);
@@ -454,7 +456,7 @@ TEST(RunCli, OptimizeFallsBackToPaddingThenNewGriddingsAndTheReportNamesThem) {
     // the padded mesh that was tried is not left behind.
     EXPECT_NE(r.out.find(fmt::format("regridded: {}", expected[n - 1])), std::string::npos) << r.out;
     EXPECT_EQ(gridded.cells, final_mesh.cells);
-    EXPECT_EQ(j["padding"]["applied"], "none");
+    EXPECT_EQ(j["padding"]["applied"], "none (nothing to pad)");  // the default selective padding
     EXPECT_FALSE(fs::exists(out / "hex_padded.mesh"));
   }
   EXPECT_GT(hexes[2], hexes[1]);  // twice the target: a finer grid
