@@ -309,6 +309,10 @@ void validate(const MeshData& d, const std::string& name) {
 }
 
 MeshData read_mesh_from_memory(std::string_view bytes, Format format, const std::string& name) {
+  // A UTF-8 byte order mark, as Windows editors write, is not part of the text (binary STL's
+  // 80-byte header may hold anything, so it is left alone there).
+  static constexpr std::string_view kBom = "\xEF\xBB\xBF";
+  if (format != Format::Stl && bytes.starts_with(kBom)) bytes.remove_prefix(kBom.size());
   if (all_space(bytes)) throw InputError(name, 0, "empty file");
   MeshData d;
   switch (format) {

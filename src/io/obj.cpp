@@ -1,12 +1,18 @@
 //! Wavefront OBJ: `v x y z [w | r g b]` and `f a b c ...` with `a`, `a/t`, `a//n`, `a/t/n`
 //! references (1-based, negative = relative to the last vertex). Triangles and quads are kept,
 //! larger polygons are fan-triangulated from their first vertex. Texture coordinates, normals,
-//! groups, smoothing, materials, lines and points are ignored; any other statement is an error.
+//! groups, smoothing, materials, lines and points are ignored; statements OBJ does not define
+//! (vendor extensions, `c ...`) are skipped with one warning per keyword and its count, as
+//! other readers of the format do, so that a clean surface is never refused for them.
 #include "io/formats.h"
 #include "io/parse.h"
 
+#include "core/log.h"
+
 #include <algorithm>
 #include <iterator>
+#include <map>
+#include <string>
 
 namespace polycube::io::detail {
 
@@ -26,6 +32,9 @@ bool is_ignored_statement(std::string_view kw) {
 }  // namespace
 
 core::MeshData read_obj(std::string_view data, const std::string& name) {
+  // Text only: a NUL byte means a binary file under the wrong extension, not statements to skip.
+  if (data.find('\0') != std::string_view::npos)
+    throw core::InputError(name, 0, "binary data in a text OBJ file: not an OBJ file?");
   Scanner s(data, name, '#');
   core::MeshData d;
   // Reserve from a quick count of the lines starting with "v " and "f " (an exact upper bound
@@ -39,6 +48,7 @@ core::MeshData read_obj(std::string_view data, const std::string& name) {
   d.points.reserve(nv);
   d.triangles.reserve(nf);
   std::vector<int> poly;
+  std::map<std::string, int, std::less<>> unknown;  // keyword -> lines skipped (sorted: stable output)
   for (;;) {
     const std::string_view kw = s.next();
     if (kw.empty()) break;
@@ -62,9 +72,18 @@ core::MeshData read_obj(std::string_view data, const std::string& name) {
     } else if (is_ignored_statement(kw)) {
       s.skip_line();
     } else {
-      s.fail("unknown OBJ statement " + quote(kw));
+      ++unknown[std::string(kw)];
+      s.skip_line();
     }
   }
+  if (!unknown.empty() && d.triangles.empty() && d.quads.empty())
+    throw core::InputError(name, 0,
+                           fmt::format("no faces, and {} kind(s) of statement OBJ does not define (first {}): "
+                                       "not an OBJ file?",
+                                       unknown.size(), quote(unknown.begin()->first)));
+  for (const auto& [kw, count] : unknown)
+    core::logger().warn("{}: skipped {} line(s) with the statement {}, which OBJ does not define", name, count,
+                        quote(kw));
   return d;
 }
 

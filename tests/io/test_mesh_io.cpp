@@ -1,16 +1,19 @@
 // Round trips of every format in memory and on disk, and the readers' tolerance of real-world
 // variants (hand-written files).
 #include "core/errors.h"
+#include "core/log.h"
 #include "fixtures.h"
 #include "io/mesh_io.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <spdlog/sinks/ostream_sink.h>
 
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 
 namespace polycube::io {
 namespace {
@@ -253,6 +256,28 @@ TEST(Obj, NegativeIndicesSlashesPolygonsAndIgnoredStatements) {
   const std::vector<core::Tri> expected{{0, 1, 2}, {0, 2, 3}, {0, 1, 2}, {0, 2, 4}, {0, 4, 3}};
   EXPECT_EQ(d.triangles, expected);
   EXPECT_TRUE(d.quads.empty());
+}
+
+TEST(Obj, StatementsOBJDoesNotDefineAreSkippedWithOneWarningPerKind) {
+  std::ostringstream log;
+  core::set_logger(std::make_shared<spdlog::logger>("test", std::make_shared<spdlog::sinks::ostream_sink_mt>(log)));
+  // A UTF-8 byte order mark, a vendor extension and a curve statement around a clean triangle.
+  const std::string s = "\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nc 1 2\nv 0 1 0\nxyz_ext a b\nc 3\nf 1 2 3\n";
+  const core::MeshData d = read_mesh_from_memory(s, Format::Obj, "t.obj");
+  core::set_logger(nullptr);
+  ASSERT_EQ(d.points.size(), 3u);
+  EXPECT_EQ(d.points[0], core::Vec3(0, 0, 0));
+  EXPECT_EQ(d.triangles, (std::vector<core::Tri>{{0, 1, 2}}));
+  const std::string text = log.str();
+  EXPECT_NE(text.find("skipped 2 line(s) with the statement 'c'"), std::string::npos) << text;
+  EXPECT_NE(text.find("skipped 1 line(s) with the statement 'xyz_ext'"), std::string::npos) << text;
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 2) << text;
+  // Only unknown statements and no face: not an OBJ file, one error.
+  EXPECT_THROW(read_mesh_from_memory("hello world\nthis is prose\n", Format::Obj, "t.obj"), core::InputError);
+  // A BOM before any text format's content is ignored.
+  EXPECT_EQ(read_mesh_from_memory("\xEF\xBB\xBFOFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", Format::Off, "x")
+                .triangles.size(),
+            1u);
 }
 
 TEST(Off, VariantsCommentsAndColours) {
