@@ -4,6 +4,7 @@
 #include "core/topology.h"
 #include "io/mesh_io.h"
 #include "quality/scaled_jacobian.h"
+#include "repair/repair.h"
 
 #include <fmt/format.h>
 
@@ -44,17 +45,22 @@ std::string surface_text(const core::SurfaceReport& r, const char* indent) {
       "{0}components {5}, Euler characteristic {6}, genus {7}\n",
       indent, r.closed ? "yes" : "no", r.manifold ? "yes" : "no", r.orientable ? "yes" : "no",
       r.consistently_oriented ? "yes" : "no", r.components, r.euler_characteristic, genus);
-  if (!r.closed) s += fmt::format("{}boundary edges {} in {} loop(s)\n", indent, r.boundary_edges, r.boundary_loops);
+  if (!r.closed)
+    s += fmt::format("{}boundary edges {} in {} loop(s)\n", indent, r.boundary_edges,
+                     r.boundary_loops);
   if (r.nonmanifold_edges + r.nonmanifold_vertices > 0)
-    s += fmt::format("{}non-manifold edges {}, non-manifold vertices {}\n", indent, r.nonmanifold_edges,
-                     r.nonmanifold_vertices);
-  if (r.degenerate_faces > 0) s += fmt::format("{}degenerate faces {}\n", indent, r.degenerate_faces);
-  if (r.isolated_vertices > 0) s += fmt::format("{}isolated vertices {}\n", indent, r.isolated_vertices);
+    s += fmt::format("{}non-manifold edges {}, non-manifold vertices {}\n", indent,
+                     r.nonmanifold_edges, r.nonmanifold_vertices);
+  if (r.degenerate_faces > 0)
+    s += fmt::format("{}degenerate faces {}\n", indent, r.degenerate_faces);
+  if (r.isolated_vertices > 0)
+    s += fmt::format("{}isolated vertices {}\n", indent, r.isolated_vertices);
   return s;
 }
 
 template <class Mesh>
-void add_volume(nlohmann::json& j, std::string& text, const char* key, const char* what, const Mesh& m) {
+void add_volume(nlohmann::json& j, std::string& text, const char* key, const char* what,
+                const Mesh& m) {
   const core::VolumeReport r = core::analyze_volume(m);
   j[key] = {{"cells", r.cells},
             {"faces", r.faces},
@@ -64,16 +70,17 @@ void add_volume(nlohmann::json& j, std::string& text, const char* key, const cha
             {"inverted_cells", r.inverted_cells},
             {"euler_characteristic", r.euler_characteristic},
             {"boundary", surface_json(r.boundary)}};
-  text += fmt::format("{}: {} components, {} inverted, {} boundary faces{}\n", what,
-                      r.components, r.inverted_cells, r.boundary_faces,
-                      r.nonmanifold_faces ? fmt::format(", {} NON-MANIFOLD faces", r.nonmanifold_faces) : "");
+  text += fmt::format(
+      "{}: {} components, {} inverted, {} boundary faces{}\n", what, r.components, r.inverted_cells,
+      r.boundary_faces,
+      r.nonmanifold_faces ? fmt::format(", {} NON-MANIFOLD faces", r.nonmanifold_faces) : "");
   // Element quality (Verdict scaled Jacobian; degenerate elements count as invalid).
   quality::ScaledJacobianOptions so;
   so.keep_values = false;
   const quality::ScaledJacobianSummary sj = quality::scaled_jacobian(m, so);
   j[key]["scaled_jacobian"] = scaled_jacobian_json(sj);
-  text += fmt::format("  scaled Jacobian: min {:.4f}, average {:.4f}, {} inverted, {} invalid\n", sj.min, sj.average,
-                      sj.inverted, sj.invalid);
+  text += fmt::format("  scaled Jacobian: min {:.4f}, average {:.4f}, {} inverted, {} invalid\n",
+                      sj.min, sj.average, sj.inverted, sj.invalid);
   text += "  boundary surface:\n" + surface_text(r.boundary, "    ");
   j["genus"] = r.boundary.genus;
 }
@@ -95,17 +102,29 @@ void run_info(const InfoOptions& o) {
                {"max", {bb.max.x(), bb.max.y(), bb.max.z()}},
                {"diagonal", bb.diagonal()}};
   text += fmt::format("{} ({})\n", o.input, j["format"].get<std::string>());
-  text += fmt::format("vertices {}, triangles {}, quads {}, tetrahedra {}, hexahedra {}\n", d.points.size(),
-                      d.triangles.size(), d.quads.size(), d.tets.size(), d.hexes.size());
-  text += fmt::format("bounding box [{:.6g}, {:.6g}, {:.6g}] - [{:.6g}, {:.6g}, {:.6g}], diagonal {:.6g}\n",
-                      bb.min.x(), bb.min.y(), bb.min.z(), bb.max.x(), bb.max.y(), bb.max.z(), bb.diagonal());
+  text += fmt::format("vertices {}, triangles {}, quads {}, tetrahedra {}, hexahedra {}\n",
+                      d.points.size(), d.triangles.size(), d.quads.size(), d.tets.size(),
+                      d.hexes.size());
+  text += fmt::format(
+      "bounding box [{:.6g}, {:.6g}, {:.6g}] - [{:.6g}, {:.6g}, {:.6g}], diagonal {:.6g}\n",
+      bb.min.x(), bb.min.y(), bb.min.z(), bb.max.x(), bb.max.y(), bb.max.z(), bb.diagonal());
 
   // Volume elements take precedence: their boundary is the shape. Otherwise the surface blocks.
   if (!d.hexes.empty()) add_volume(j, text, "hexahedra_report", "hex mesh", core::hexes_of(d));
   if (!d.tets.empty()) add_volume(j, text, "tetrahedra_report", "tet mesh", core::tets_of(d));
   if (d.tets.empty() && d.hexes.empty()) {
     if (!d.triangles.empty()) {
-      const core::SurfaceReport r = core::analyze_surface(core::triangles_of(d));
+      // The surface as construct and run see it: after the repairs that never move it.
+      core::TriMesh surface = core::triangles_of(d);
+      const repair::RepairReport repaired = repair::repair_surface(surface);
+      j["repairs"] = repaired.lines();
+      if (repaired.changed()) {
+        text +=
+            "repairs (run, construct and fabricate apply them on load; the figures below are after "
+            "them):\n";
+        for (const std::string& line : repaired.lines()) text += "  " + line + "\n";
+      }
+      const core::SurfaceReport r = core::analyze_surface(surface);
       j["surface"] = surface_json(r);
       j["genus"] = r.genus;
       text += "triangle surface:\n" + surface_text(r, "  ");
@@ -124,9 +143,11 @@ void run_info(const InfoOptions& o) {
 
 void register_info(CLI::App& app) {
   auto opts = std::make_shared<InfoOptions>();
-  CLI::App* sub = app.add_subcommand(
-      "info", "Counts, bounding box, closed/manifold/orientable checks, genus and components of a mesh file");
-  sub->add_option("file", opts->input, "Mesh file (.obj .off .stl .ply .mesh .vtk .msh)")->required();
+  CLI::App* sub = app.add_subcommand("info",
+                                     "Counts, bounding box, closed/manifold/orientable checks, "
+                                     "genus and components of a mesh file");
+  sub->add_option("file", opts->input, "Mesh file (.obj .off .stl .ply .mesh .vtk .msh)")
+      ->required();
   sub->callback([opts] { run_info(*opts); });
 }
 

@@ -44,6 +44,7 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
   for (const auto& s : r.stages) stages.push_back({{"stage", s.name}, {"ok", s.ok}, {"seconds", s.seconds}});
   nlohmann::json j = {
       {"input", o.input},
+      {"repairs", r.repairs},
       {"ok", r.ok()},
       {"stages", stages},
       {"tets", r.tets},

@@ -21,11 +21,11 @@ namespace {
 //! Statements that are valid OBJ but carry nothing a MeshData holds.
 bool is_ignored_statement(std::string_view kw) {
   static constexpr std::string_view kIgnored[] = {
-      "vt",   "vn",    "vp",       "g",        "o",     "s",          "usemtl",    "mtllib",
-      "l",    "p",     "cstype",   "deg",      "bmat",  "step",       "curv",      "curv2",
-      "surf", "parm",  "trim",     "hole",     "scrv",  "sp",         "end",       "con",
-      "mg",   "bevel", "c_interp", "d_interp", "lod",   "maplib",     "usemap",    "shadow_obj",
-      "trace_obj", "ctech", "stech", "call"};
+      "vt",        "vn",    "vp",       "g",        "o",    "s",      "usemtl", "mtllib",
+      "l",         "p",     "cstype",   "deg",      "bmat", "step",   "curv",   "curv2",
+      "surf",      "parm",  "trim",     "hole",     "scrv", "sp",     "end",    "con",
+      "mg",        "bevel", "c_interp", "d_interp", "lod",  "maplib", "usemap", "shadow_obj",
+      "trace_obj", "ctech", "stech",    "call"};
   return std::find(std::begin(kIgnored), std::end(kIgnored), kw) != std::end(kIgnored);
 }
 
@@ -48,13 +48,15 @@ core::MeshData read_obj(std::string_view data, const std::string& name) {
   d.points.reserve(nv);
   d.triangles.reserve(nf);
   std::vector<int> poly;
-  std::map<std::string, int, std::less<>> unknown;  // keyword -> lines skipped (sorted: stable output)
+  std::map<std::string, int, std::less<>>
+      unknown;  // keyword -> lines skipped (sorted: stable output)
   for (;;) {
     const std::string_view kw = s.next();
     if (kw.empty()) break;
     if (kw == "v") {
       core::Vec3 p;
-      for (int k = 0; k < 3; ++k) p[k] = s.real(s.line_token("vertex coordinate"), "vertex coordinate");
+      for (int k = 0; k < 3; ++k)
+        p[k] = s.real(s.line_token("vertex coordinate"), "vertex coordinate");
       d.points.push_back(p);
       s.skip_line();  // optional w or vertex colour
     } else if (kw == "f") {
@@ -67,7 +69,8 @@ core::MeshData read_obj(std::string_view data, const std::string& name) {
         if (v < 0) v += n + 1;  // relative reference: -1 is the last vertex read
         poly.push_back(s.check_index(v, n, 1));
       }
-      if (poly.size() < 3) s.fail("face with " + std::to_string(poly.size()) + " vertices (at least 3 needed)");
+      if (poly.size() < 3)
+        s.fail("face with " + std::to_string(poly.size()) + " vertices (at least 3 needed)");
       add_polygon(d, poly);
     } else if (is_ignored_statement(kw)) {
       s.skip_line();
@@ -77,13 +80,14 @@ core::MeshData read_obj(std::string_view data, const std::string& name) {
     }
   }
   if (!unknown.empty() && d.triangles.empty() && d.quads.empty())
-    throw core::InputError(name, 0,
-                           fmt::format("no faces, and {} kind(s) of statement OBJ does not define (first {}): "
-                                       "not an OBJ file?",
-                                       unknown.size(), quote(unknown.begin()->first)));
+    throw core::InputError(
+        name, 0,
+        fmt::format("no faces, and {} kind(s) of statement OBJ does not define (first {}): "
+                    "not an OBJ file?",
+                    unknown.size(), quote(unknown.begin()->first)));
   for (const auto& [kw, count] : unknown)
-    core::logger().warn("{}: skipped {} line(s) with the statement {}, which OBJ does not define", name, count,
-                        quote(kw));
+    core::logger().warn("{}: skipped {} line(s) with the statement {}, which OBJ does not define",
+                        name, count, quote(kw));
   return d;
 }
 
@@ -91,10 +95,11 @@ std::string write_obj(const core::MeshData& d, const WriteOptions& /*options*/) 
   std::string out;
   out.reserve(d.points.size() * 64 + d.num_cells() * 32);
   TextWriter w(out);
-  w << "# written by polycube: " << d.points.size() << " vertices, " << d.triangles.size() << " triangles, "
-    << d.quads.size() << " quads\n";
+  w << "# written by polycube: " << d.points.size() << " vertices, " << d.triangles.size()
+    << " triangles, " << d.quads.size() << " quads\n";
   for (const core::Vec3& p : d.points) w << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
-  for (const core::Tri& t : d.triangles) w << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
+  for (const core::Tri& t : d.triangles)
+    w << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
   for (const core::Quad& q : d.quads)
     w << "f " << q[0] + 1 << ' ' << q[1] + 1 << ' ' << q[2] + 1 << ' ' << q[3] + 1 << '\n';
   return out;

@@ -3,8 +3,10 @@
 
 #include "construct/tetrahedralize.h"
 #include "core/errors.h"
+#include "core/log.h"
 #include "core/topology.h"
 #include "io/mesh_io.h"
+#include "repair/repair.h"
 
 namespace polycube::pipeline {
 
@@ -28,7 +30,8 @@ ConstructInput read_construct_input(const std::filesystem::path& path) {
         in.tets = std::move(mesh);
         return in;
       }
-      if (!data.hexes.empty()) throw core::InputError("hexahedral meshes are not accepted; give a surface or a tet mesh");
+      if (!data.hexes.empty())
+        throw core::InputError("hexahedral meshes are not accepted; give a surface or a tet mesh");
       core::TriMesh surface = core::triangles_of(data);
       surface.labels.clear();
       if (surface.cells.empty()) throw core::InputError("the file holds no triangle and no tet");
@@ -36,6 +39,9 @@ ConstructInput read_construct_input(const std::filesystem::path& path) {
     } else {
       in.surface = io::read_surface(name);
     }
+    const repair::RepairReport repaired = repair::repair_surface(*in.surface);
+    in.repairs = repaired.lines();
+    for (const std::string& line : in.repairs) core::logger().warn("{}: {}", name, line);
     construct::check_closed_surface(*in.surface);
   } catch (const core::InputError& e) {
     const std::string what = e.what();
@@ -46,7 +52,8 @@ ConstructInput read_construct_input(const std::filesystem::path& path) {
   return in;
 }
 
-construct::ConstructResult construct_from_input(const ConstructInput& input, const std::filesystem::path& path,
+construct::ConstructResult construct_from_input(const ConstructInput& input,
+                                                const std::filesystem::path& path,
                                                 const construct::ConstructOptions& options) {
   try {
     if (input.tets) return construct::construct_polycube(*input.tets, options);

@@ -8,6 +8,8 @@
 
 #include <filesystem>
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace polycube::pipeline {
 
@@ -17,15 +19,19 @@ struct ConstructInput {
   std::optional<core::TriMesh> surface;  //!< set for surface inputs
   //! The surface the results are compared with: the input surface, or the tet mesh's boundary.
   core::TriMesh target;
+  //! What the default repairs changed in a surface input (repair/repair.h), a line per kind.
+  std::vector<std::string> repairs;
 };
 
-//! Read a construction input and check what can be checked before heavy work: a surface must
-//! be closed and manifold; a hex mesh is refused.
+//! Read a construction input and check what can be checked before heavy work: a surface gets
+//! the repairs that never move it (each logged as a warning), then must be closed and manifold;
+//! a hex mesh is refused.
 //! \throw core::InputError naming the file
 ConstructInput read_construct_input(const std::filesystem::path& path);
 
 //! Run the construction on a read input. InputErrors are re-thrown naming the file.
-construct::ConstructResult construct_from_input(const ConstructInput& input, const std::filesystem::path& path,
+construct::ConstructResult construct_from_input(const ConstructInput& input,
+                                                const std::filesystem::path& path,
                                                 const construct::ConstructOptions& options);
 
 }  // namespace polycube::pipeline

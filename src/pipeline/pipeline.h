@@ -94,6 +94,7 @@ struct RunResult {
   std::vector<StageRecord> stages;
   std::string failed_stage;  //!< empty when every stage succeeded
   std::string failure;       //!< the reason, one line
+  std::vector<std::string> repairs;  //!< what the default repairs changed in the input surface
   //! The failure is the input file's fault (exit code 2): an InputError of the stages that read
   //! and process the file ("input", "construct"). A later stage's InputError (the chain's own
   //! intermediate result, or a request such as a target hex count whose lattice is too large for
