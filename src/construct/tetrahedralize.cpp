@@ -17,7 +17,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace polycube::construct {
@@ -67,7 +70,8 @@ BoundaryInfo boundary_info(const TetMesh& m) {
 }
 
 //! Interior edges whose two endpoints are boundary vertices (sorted edge ids of et).
-std::vector<int> bad_edges(const BoundaryInfo& info, const core::EdgeTopology<core::CellType::Tetra>& et) {
+std::vector<int> bad_edges(const BoundaryInfo& info,
+                           const core::EdgeTopology<core::CellType::Tetra>& et) {
   std::vector<int> bad;
   for (int e = 0; e < et.num_edges(); ++e) {
     const auto& ab = et.edges[e];
@@ -85,14 +89,86 @@ void push_cell(TetMesh& m, const Tet& t, int label) {
 
 std::string tetgen_reason(int code) {
   switch (code) {
-    case 1: return "out of memory";
-    case 2: return "internal error";
-    case 3: return "the surface self-intersects";
-    case 4: return "a very small input feature size was detected";
-    case 5: return "two very close input facets were detected";
-    case 10: return "input error";
-    default: return fmt::format("error code {}", code);
+    case 1:
+      return "out of memory";
+    case 2:
+      return "internal error";
+    case 3:
+      return "the surface self-intersects";
+    case 4:
+      return "a very small input feature size was detected";
+    case 5:
+      return "two very close input facets were detected";
+    case 10:
+      return "input error";
+    default:
+      return fmt::format("error code {}", code);
   }
+}
+
+//! A point of the surface, written for a message: "(x, y, z)" (or "an unknown place").
+std::string where(const std::optional<core::Vec3>& p) {
+  return p ? fmt::format("({:.6g}, {:.6g}, {:.6g})", p->x(), p->y(), p->z())
+           : std::string("an unknown place");
+}
+
+//! The centre of the first triangle (in file order) of zero area.
+std::optional<core::Vec3> first_zero_area(const core::TriMesh& m) {
+  for (const core::Tri& t : m.cells) {
+    const core::Vec3 &a = m.points[t[0]], &b = m.points[t[1]], &c = m.points[t[2]];
+    const double longest =
+        std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0] ||
+        0.5 * (b - a).cross(c - a).norm() <= 1e-12 * longest)
+      return (a + b + c) / 3.0;
+  }
+  return std::nullopt;
+}
+
+//! The midpoint of the first edge (in the order of the triangles) whose number of triangles
+//! satisfies `count_is`.
+template <class Pred>
+std::optional<core::Vec3> first_edge_used(const core::TriMesh& m, Pred count_is) {
+  std::map<std::pair<int, int>, int> uses;
+  for (const core::Tri& t : m.cells)
+    for (int e = 0; e < 3; ++e) ++uses[std::minmax(t[e], t[(e + 1) % 3])];
+  for (const core::Tri& t : m.cells)
+    for (int e = 0; e < 3; ++e) {
+      const auto key = std::minmax(t[e], t[(e + 1) % 3]);
+      if (count_is(uses[key])) return (m.points[key.first] + m.points[key.second]) / 2.0;
+    }
+  return std::nullopt;
+}
+
+//! The first vertex whose triangles form more than one fan (joined through shared edges).
+std::optional<core::Vec3> first_pinched_vertex(const core::TriMesh& m) {
+  std::vector<std::vector<int>> around(m.points.size());
+  for (std::size_t t = 0; t < m.cells.size(); ++t)
+    for (const int v : m.cells[t])
+      around[static_cast<std::size_t>(v)].push_back(static_cast<int>(t));
+  for (std::size_t v = 0; v < around.size(); ++v) {
+    const std::vector<int>& fan = around[v];
+    if (fan.size() < 2) continue;
+    // Grow one fan from the first triangle through edges at v; any triangle left out is a second.
+    std::vector<char> reached(fan.size(), 0);
+    reached[0] = 1;
+    for (bool grew = true; grew;) {
+      grew = false;
+      for (std::size_t i = 0; i < fan.size(); ++i) {
+        if (reached[i]) continue;
+        for (std::size_t k = 0; k < fan.size() && !reached[i]; ++k) {
+          if (!reached[k]) continue;
+          int shared = 0;  // vertices the two triangles share besides v
+          for (const int a : m.cells[static_cast<std::size_t>(fan[i])])
+            for (const int b : m.cells[static_cast<std::size_t>(fan[k])])
+              shared += a == b && a != static_cast<int>(v);
+          if (shared > 0) reached[i] = grew = true;
+        }
+      }
+    }
+    if (std::find(reached.begin(), reached.end(), 0) != reached.end()) return m.points[v];
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -100,30 +176,36 @@ std::string tetgen_reason(int code) {
 void check_closed_surface(const core::TriMesh& surface) {
   if (surface.cells.empty()) throw core::InputError("the surface has no triangle");
   const auto report = core::analyze_surface(surface);  // throws InputError on bad indices
+  // Each refusal says where the first defect is (model coordinates) and what to do about it.
   if (report.degenerate_faces > 0)
     throw core::InputError(fmt::format(
-        "the surface has {} degenerate triangle(s) (repeated vertex or zero area)",
-        report.degenerate_faces));
+        "the surface has {} triangle(s) of zero area, the first at {}; remove them (MeshLab: "
+        "Remove Zero Area Faces) or remesh the surface",
+        report.degenerate_faces, where(first_zero_area(surface))));
   if (report.nonmanifold_edges > 0)
     throw core::InputError(fmt::format(
-        "the surface is not manifold: {} edge(s) shared by three or more triangles",
-        report.nonmanifold_edges));
+        "the surface is not manifold: {} edge(s) shared by three or more triangles, the first at "
+        "{}; "
+        "separate the solids that touch there or give one closed solid",
+        report.nonmanifold_edges, where(first_edge_used(surface, [](int n) { return n > 2; }))));
   if (report.boundary_edges > 0)
-    throw core::InputError(fmt::format("the surface is open: {} boundary edge(s) in {} hole(s)",
-                                       report.boundary_edges, report.boundary_loops));
+    throw core::InputError(fmt::format(
+        "the surface is open: {} boundary edge(s) in {} hole(s), the first at {}; close the holes "
+        "(MeshLab: Close Holes) or give a closed surface",
+        report.boundary_edges, report.boundary_loops,
+        where(first_edge_used(surface, [](int n) { return n == 1; }))));
   if (report.nonmanifold_vertices > 0)
     throw core::InputError(fmt::format(
-        "the surface is not manifold: {} vertex(es) where separate sheets touch",
-        report.nonmanifold_vertices));
-  if (!report.orientable)
-    throw core::InputError("the surface is not orientable");
+        "the surface is not manifold: {} vertex(es) where separate sheets touch, the first at {}; "
+        "move the sheets apart there or join them into one solid",
+        report.nonmanifold_vertices, where(first_pinched_vertex(surface))));
+  if (!report.orientable) throw core::InputError("the surface is not orientable");
 
   // Self-intersection, with exact predicates, on a consistently oriented copy.
   using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
   using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
   core::TriMesh oriented = surface;
-  if (!core::orient_consistently(oriented))
-    throw core::InputError("the surface is not orientable");
+  if (!core::orient_consistently(oriented)) throw core::InputError("the surface is not orientable");
   SurfaceMesh sm;
   std::vector<SurfaceMesh::Vertex_index> vid;
   vid.reserve(oriented.points.size());
@@ -143,7 +225,8 @@ void check_closed_surface(const core::TriMesh& surface) {
   }
 }
 
-TetrahedralizeResult tetrahedralize(const core::TriMesh& input, const TetrahedralizeOptions& options) {
+TetrahedralizeResult tetrahedralize(const core::TriMesh& input,
+                                    const TetrahedralizeOptions& options) {
   core::TriMesh surface = input;
   core::remove_unreferenced_points(surface);
   check_closed_surface(surface);
@@ -208,12 +291,13 @@ TetrahedralizeResult tetrahedralize(const core::TriMesh& input, const Tetrahedra
   // TetGen must have kept the surface: same number of boundary triangles.
   const auto bnd = core::boundary(mesh);
   if (bnd.surface.num_cells() != surface.num_cells())
-    throw core::GeometryError(fmt::format(
-        "TetGen changed the surface ({} boundary triangles instead of {})",
-        bnd.surface.num_cells(), surface.num_cells()));
+    throw core::GeometryError(
+        fmt::format("TetGen changed the surface ({} boundary triangles instead of {})",
+                    bnd.surface.num_cells(), surface.num_cells()));
   if (options.refine) result.refine = refine_boundary(mesh);
-  log.info("tetrahedralize: {} tets from TetGen, {} after refinement ({} edge splits, {} tet splits)",
-           result.tetgen_tets, mesh.num_cells(), result.refine.split_edges, result.refine.split_tets);
+  log.info(
+      "tetrahedralize: {} tets from TetGen, {} after refinement ({} edge splits, {} tet splits)",
+      result.tetgen_tets, mesh.num_cells(), result.refine.split_edges, result.refine.split_tets);
   return result;
 }
 
@@ -226,14 +310,18 @@ void prepare_tet_mesh(TetMesh& mesh) {
   const double eps = 1e-14 * scale * scale * scale;
   for (const auto& t : mesh.cells) {
     const double v = signed_volume6(mesh, t);
-    if (std::abs(v) <= eps) ++flat;
-    else if (v > 0) ++positive;
-    else ++negative;
+    if (std::abs(v) <= eps)
+      ++flat;
+    else if (v > 0)
+      ++positive;
+    else
+      ++negative;
   }
   if (flat > 0) throw core::InputError(fmt::format("the tet mesh has {} flat tetrahedra", flat));
   if (positive > 0 && negative > 0)
-    throw core::InputError(fmt::format(
-        "the tet mesh mixes orientations: {} positive and {} inverted tetrahedra", positive, negative));
+    throw core::InputError(
+        fmt::format("the tet mesh mixes orientations: {} positive and {} inverted tetrahedra",
+                    positive, negative));
   if (negative > 0)
     for (auto& t : mesh.cells) std::swap(t[2], t[3]);
   core::TetBoundary bnd;
@@ -290,15 +378,17 @@ RefineStats refine_boundary(TetMesh& mesh) {
     if (info.boundary_faces_of_cell[c] < 2) continue;
     const Tet t = mesh.cells[c];
     const int m = mesh.num_points();
-    mesh.points.push_back(0.25 * (mesh.points[t[0]] + mesh.points[t[1]] + mesh.points[t[2]] +
-                                  mesh.points[t[3]]));
+    mesh.points.push_back(
+        0.25 * (mesh.points[t[0]] + mesh.points[t[1]] + mesh.points[t[2]] + mesh.points[t[3]]));
     const int label = mesh.labels.empty() ? 0 : mesh.labels[c];
     // Replacing one vertex by an interior point keeps the orientation.
     for (int k = 0; k < 4; ++k) {
       Tet tk = t;
       tk[k] = m;
-      if (k == 0) mesh.cells[c] = tk;
-      else push_cell(mesh, tk, label);
+      if (k == 0)
+        mesh.cells[c] = tk;
+      else
+        push_cell(mesh, tk, label);
     }
     ++stats.split_tets;
   }

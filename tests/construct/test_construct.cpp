@@ -11,10 +11,12 @@
 #include "io/mesh_io.h"
 
 #include "construct/pipeline.h"
-#include "support/shapes.h"
 #include "construct/validator.h"
+#include "support/shapes.h"
 
 #include <gtest/gtest.h>
+
+#include <fmt/format.h>
 
 #include <random>
 
@@ -68,7 +70,8 @@ TEST(Tetrahedralize, MaxVolumeMakesMoreTets) {
     for (int k = 0; k < 4; ++k) c += b.mesh.points[t[k]] / 4;
     if (c.minCoeff() < 0.25 || c.maxCoeff() > 0.75) continue;
     core::TetMesh one;
-    one.points = {b.mesh.points[t[0]], b.mesh.points[t[1]], b.mesh.points[t[2]], b.mesh.points[t[3]]};
+    one.points = {b.mesh.points[t[0]], b.mesh.points[t[1]], b.mesh.points[t[2]],
+                  b.mesh.points[t[3]]};
     one.cells = {{0, 1, 2, 3}};
     if (tet_volume(one) > 0.0005 * (1 + 1e-9)) ++inner_over;
   }
@@ -99,12 +102,47 @@ TEST(Tetrahedralize, InvertedInputTetMeshIsReoriented) {
 
 TEST(Tetrahedralize, RefusesOpenSurface) {
   core::TriMesh cube = test::make_box(1.0, 1.0, 1.0, 2);
+  const core::Tri removed = cube.cells.back();
   cube.cells.pop_back();
   try {
     construct::tetrahedralize(cube);
     FAIL() << "no exception";
   } catch (const core::InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("open"), std::string::npos) << e.what();
+    const std::string what = e.what();
+    EXPECT_NE(what.find("open: 3 boundary edge(s) in 1 hole(s)"), std::string::npos) << what;
+    EXPECT_NE(what.find("Close Holes"), std::string::npos) << what;  // the remedy
+    // Where: the midpoint of one of the removed triangle's edges.
+    bool named = false;
+    for (int k = 0; k < 3; ++k) {
+      const core::Vec3 mid = (cube.points[removed[k]] + cube.points[removed[(k + 1) % 3]]) / 2.0;
+      named = named || what.find(fmt::format("the first at ({:.6g}, {:.6g}, {:.6g})", mid.x(),
+                                             mid.y(), mid.z())) != std::string::npos;
+    }
+    EXPECT_TRUE(named) << what;
+  }
+}
+
+TEST(Tetrahedralize, RefusesSheetsTouchingAtAVertexAndSaysWhere) {
+  // Two unit boxes sharing only the corner (1, 1, 1).
+  core::TriMesh a = test::make_box(1.0, 1.0, 1.0, 1);
+  const core::TriMesh b = test::make_box(1.0, 1.0, 1.0, 1, core::Vec3(1, 1, 1));
+  const int corner = static_cast<int>(
+      std::find(a.points.begin(), a.points.end(), core::Vec3(1, 1, 1)) - a.points.begin());
+  ASSERT_LT(corner, a.num_points());
+  std::vector<int> index;
+  for (const auto& p : b.points) {
+    index.push_back(p == core::Vec3(1, 1, 1) ? corner : a.num_points());
+    if (p != core::Vec3(1, 1, 1)) a.points.push_back(p);
+  }
+  for (const auto& t : b.cells) a.cells.push_back({index[t[0]], index[t[1]], index[t[2]]});
+  try {
+    construct::tetrahedralize(a);
+    FAIL() << "no exception";
+  } catch (const core::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "1 vertex(es) where separate sheets touch, the first at (1, 1, 1)"),
+              std::string::npos)
+        << e.what();
   }
 }
 
@@ -166,7 +204,8 @@ TEST(PolycubeEstimate, BoxWithItsOwnLabelingIsReproduced) {
   EXPECT_TRUE(est.flipped.empty());
   EXPECT_NEAR(est.flipped_area, 0.0, 0.0);
   EXPECT_LT(est.edge_distortion, 1e-6);
-  for (int v = 0; v < box.num_points(); ++v) EXPECT_LT((est.points[v] - box.points[v]).norm(), 1e-6);
+  for (int v = 0; v < box.num_points(); ++v)
+    EXPECT_LT((est.points[v] - box.points[v]).norm(), 1e-6);
 }
 
 TEST(PolycubeEstimate, TopLabeledDownwardsFolds) {
@@ -199,7 +238,9 @@ TEST(Labeling, CubeFacesGetTheirAxes) {
   const auto lab = construct::graph_cut_labeling(cube);
   for (int t = 0; t < cube.num_cells(); ++t) {
     const auto& c = cube.cells[t];
-    const core::Vec3 n = (cube.points[c[1]] - cube.points[c[0]]).cross(cube.points[c[2]] - cube.points[c[0]]).normalized();
+    const core::Vec3 n = (cube.points[c[1]] - cube.points[c[0]])
+                             .cross(cube.points[c[2]] - cube.points[c[0]])
+                             .normalized();
     EXPECT_NEAR(n.dot(construct::label_direction(lab.labels[t])), 1.0, 1e-12);
   }
   EXPECT_NEAR(construct::labeling_fidelity(cube, lab.labels), 0.0, 1e-12);
@@ -273,7 +314,8 @@ TEST(AxisRotation, RotatedBoxIsTurnedBackAndAlignedBoxKept) {
   EXPECT_TRUE(kept.rotation.isIdentity());
   EXPECT_NEAR(kept.energy_before, 1.0, 1e-12);
   core::TriMesh turned = box;
-  const Eigen::Matrix3d Q = (Eigen::AngleAxisd(0.5, core::Vec3(1, 2, 3).normalized())).toRotationMatrix();
+  const Eigen::Matrix3d Q =
+      (Eigen::AngleAxisd(0.5, core::Vec3(1, 2, 3).normalized())).toRotationMatrix();
   for (core::Vec3& p : turned.points) p = Q * p;
   const construct::AxisRotation r = construct::best_axis_rotation(turned);
   EXPECT_GT(r.energy_before, 1.1);
