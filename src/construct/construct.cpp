@@ -33,6 +33,29 @@ std::string defects_text(const LabelingCheck& check, std::size_t max_listed = 5)
 
 void append(std::string& list, const std::string& item) { list += (list.empty() ? "" : "; ") + item; }
 
+//! The attempts' failures as one "; "-separated list (the report's `tried`).
+std::string joined(const std::vector<std::string>& items) {
+  std::string list;
+  for (const std::string& item : items) append(list, item);
+  return list;
+}
+
+//! One short line for the error: how many attempts failed and why the first did (shortened);
+//! every reason is in ConstructResult::tried and in the log (info level, -v).
+std::string failure_summary(const std::vector<std::string>& failures) {
+  if (failures.empty()) return "no attempt was run";
+  constexpr std::size_t kShort = 160;
+  std::string first = failures.front();
+  if (first.size() > kShort) first = first.substr(0, kShort) + "...";
+  // Alike: the same reason after the attempt's name ("compactness 2: ...").
+  const auto reason = [](const std::string& f) { return f.substr(std::min(f.find(": "), f.size())); };
+  const auto same = std::count_if(failures.begin(), failures.end(),
+                                  [&](const std::string& f) { return reason(f) == reason(failures.front()); });
+  return fmt::format("{} attempt(s) failed; the first: {}{}", failures.size(), first,
+                     failures.size() > 1 ? fmt::format(" ({} of them alike; -v lists every attempt)", same)
+                                         : std::string());
+}
+
 //! What every attempt reads: the (rotated) mesh and its boundary as a surface.
 struct Model {
   core::TetMesh mesh;               //!< in the frame of the polycube's axes
@@ -241,14 +264,14 @@ AttemptResult deform_attempt(const LabeledAttempt& la, const Model& model, const
 //! reason goes to `failures`).
 std::vector<LabeledAttempt> label_plan(const std::vector<Attempt>& plan, const Model& model,
                                        Predeformations& predeformations, const ConstructOptions& o,
-                                       ConstructTimes& seconds, std::string& failures) {
+                                       ConstructTimes& seconds, std::vector<std::string>& failures) {
   std::vector<LabeledAttempt> labeled;
   for (const Attempt& attempt : plan) {
     LabeledAttempt la = label_attempt(attempt, model, predeformations, o, seconds);
     if (la.labeling.valid)
       labeled.push_back(std::move(la));
     else
-      append(failures, la.failure);
+      failures.push_back(la.failure);
   }
   return labeled;
 }
@@ -287,7 +310,7 @@ double attempt_deadline(double time_limit, double now, bool others_left) {
 //! until one is valid; keep the attempt with the fewest failures (the first valid one).
 //! `failures` lists why the others failed.
 std::optional<AttemptResult> run_plan(const std::vector<Attempt>& plan, const Model& model, const ConstructOptions& o,
-                                      const core::Stopwatch& clock, ConstructResult& res, std::string& failures) {
+                                      const core::Stopwatch& clock, ConstructResult& res, std::vector<std::string>& failures) {
   Predeformations predeformations(model, o, res.seconds);
   std::vector<LabeledAttempt> labeled = label_plan(plan, model, predeformations, o, res.seconds, failures);
   if (!plan.empty()) order_by_promise(labeled, plan.front());
@@ -296,7 +319,7 @@ std::optional<AttemptResult> run_plan(const std::vector<Attempt>& plan, const Mo
   const int count = static_cast<int>(std::min<std::size_t>(labeled.size(), static_cast<std::size_t>(o.max_attempts)));
   for (int i = 0; i < count; ++i) {
     if (res.attempts > 0 && o.time_limit > 0 && clock.seconds() > o.time_limit) {
-      append(failures, fmt::format("time limit of {:g} s reached after {} attempt(s)", o.time_limit, res.attempts));
+      failures.push_back(fmt::format("time limit of {:g} s reached after {} attempt(s)", o.time_limit, res.attempts));
       break;
     }
     const LabeledAttempt& la = labeled[static_cast<std::size_t>(i)];
@@ -313,7 +336,7 @@ std::optional<AttemptResult> run_plan(const std::vector<Attempt>& plan, const Mo
       r.failures = 1;
       r.failure = la.attempt.name() + ": injected failure";
     }
-    if (!r.failure.empty()) append(failures, r.failure);
+    if (!r.failure.empty()) failures.push_back(r.failure);
     if (r.deformation && (!kept || r.valid || r.failures < kept->failures)) kept = std::move(r);
     if (kept && kept->valid) break;
   }
@@ -412,11 +435,12 @@ ConstructResult construct_from_prepared(const core::TetMesh& input, const Constr
   const core::Stopwatch clock;
   ConstructResult res;
   const Model model = rotated_model(input, o, res.axis_rotation);
-  std::string failures;
+  std::vector<std::string> failures;
   const std::optional<AttemptResult> kept = run_plan(plan_attempts(o), model, o, clock, res, failures);
-  res.tried = failures;
-  if (!kept) throw core::SolverError("no valid polycube labeling reached: " + failures);
-  if (!kept->valid) core::logger().warn("construct: every attempt left inverted tets ({})", failures);
+  res.tried = joined(failures);
+  if (!failures.empty()) core::logger().info("construct: failed attempts: {}", res.tried);
+  if (!kept) throw core::SolverError("no valid polycube labeling reached: " + failure_summary(failures));
+  if (!kept->valid) core::logger().warn("construct: every attempt left inverted tets ({})", failure_summary(failures));
   report_attempt(*kept, res);
 
   const core::Stopwatch certify_clock;
@@ -425,7 +449,7 @@ ConstructResult construct_from_prepared(const core::TetMesh& input, const Constr
   res.certificate = certify_polycube_map(res.map, d.boundary, d.labels, o.certify);
   if (!res.certificate.certified())
     throw NotCertified("polycube map not certified: " + res.certificate.reason() +
-                           (failures.empty() ? std::string() : " (attempts: " + failures + ")"),
+                           (failures.empty() ? std::string() : " (attempts: " + failure_summary(failures) + ")"),
                        res.map, d.boundary, d.labels);
   describe(d, boundary_in_core_order(d, res.boundary, res.labels), res);
   res.seconds.certify = certify_clock.seconds();
