@@ -17,7 +17,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <utility>
@@ -171,6 +173,90 @@ std::optional<core::Vec3> first_pinched_vertex(const core::TriMesh& m) {
   return std::nullopt;
 }
 
+//! Whether the ray p + t d (t > 0) crosses triangle (a, b, c) (Moller-Trumbore).
+bool ray_crosses(const Vec3& p, const Vec3& d, const Vec3& a, const Vec3& b, const Vec3& c, double& t) {
+  const Vec3 e1 = b - a, e2 = c - a, h = d.cross(e2);
+  const double det = e1.dot(h);
+  if (std::abs(det) < 1e-300) return false;
+  const Vec3 s = p - a;
+  const double u = s.dot(h) / det;
+  if (u < 0.0 || u > 1.0) return false;
+  const Vec3 q = s.cross(e1);
+  const double v = d.dot(q) / det;
+  if (v < 0.0 || u + v > 1.0) return false;
+  t = e2.dot(q) / det;
+  return t > 0.0;
+}
+
+//! Whether p is inside the closed shell made of `faces` of m (crossings of a ray in a direction
+//! no axis-aligned or CAD-like face is parallel to).
+bool inside_shell(const core::TriMesh& m, const std::vector<int>& faces, const Vec3& p) {
+  const Vec3 d = Vec3(0.5773, 0.5779, 0.5767).normalized();
+  int crossings = 0;
+  for (const int f : faces) {
+    const core::Tri& t = m.cells[static_cast<std::size_t>(f)];
+    double hit = 0.0;
+    crossings += ray_crosses(p, d, m.points[t[0]], m.points[t[1]], m.points[t[2]], hit) ? 1 : 0;
+  }
+  return crossings % 2 == 1;
+}
+
+//! The triangles of each connected shell (through shared edges).
+std::vector<std::vector<int>> shells(const core::TriMesh& m) {
+  std::vector<int> parent(m.cells.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int x) {
+    while (parent[static_cast<std::size_t>(x)] != x) x = parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
+    return x;
+  };
+  std::map<std::pair<int, int>, int> first;
+  for (std::size_t f = 0; f < m.cells.size(); ++f)
+    for (int e = 0; e < 3; ++e) {
+      const auto key = std::minmax(m.cells[f][e], m.cells[f][(e + 1) % 3]);
+      const auto [it, added] = first.emplace(key, static_cast<int>(f));
+      if (!added) parent[static_cast<std::size_t>(find(static_cast<int>(f)))] = find(it->second);
+    }
+  std::map<int, std::vector<int>> by_root;
+  for (std::size_t f = 0; f < m.cells.size(); ++f) by_root[find(static_cast<int>(f))].push_back(static_cast<int>(f));
+  std::vector<std::vector<int>> out;
+  for (auto& [root, faces] : by_root) out.push_back(std::move(faces));
+  return out;
+}
+
+//! A point inside each cavity of the solid: TetGen fills every closed region unless told which
+//! are holes. A shell inside an odd number of other shells bounds a cavity; its point is half
+//! way from one of its triangles to the next surface crossed on the cavity's side.
+std::vector<Vec3> cavity_points(const core::TriMesh& m) {
+  const std::vector<std::vector<int>> parts = shells(m);
+  std::vector<Vec3> points;
+  if (parts.size() < 2) return points;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const Vec3& probe = m.points[m.cells[static_cast<std::size_t>(parts[i].front())][0]];
+    int depth = 0;
+    for (std::size_t k = 0; k < parts.size(); ++k) depth += k != i && inside_shell(m, parts[k], probe) ? 1 : 0;
+    if (depth % 2 == 0) continue;
+    const core::Tri& t = m.cells[static_cast<std::size_t>(parts[i].front())];
+    const Vec3 c = (m.points[t[0]] + m.points[t[1]] + m.points[t[2]]) / 3.0;
+    const Vec3 n = (m.points[t[1]] - m.points[t[0]]).cross(m.points[t[2]] - m.points[t[0]]).normalized();
+    for (const double side : {1.0, -1.0}) {
+      double nearest = std::numeric_limits<double>::infinity();
+      for (std::size_t f = 0; f < m.cells.size(); ++f) {
+        const core::Tri& g = m.cells[f];
+        double hit = 0.0;
+        if (ray_crosses(c, side * n, m.points[g[0]], m.points[g[1]], m.points[g[2]], hit) && hit > 1e-12)
+          nearest = std::min(nearest, hit);
+      }
+      if (!std::isfinite(nearest)) continue;
+      const Vec3 p = c + side * n * (nearest / 2.0);
+      if (inside_shell(m, parts[i], p)) {
+        points.push_back(p);
+        break;
+      }
+    }
+  }
+  return points;
+}
+
 }  // namespace
 
 void check_closed_surface(const core::TriMesh& surface) {
@@ -250,6 +336,15 @@ TetrahedralizeResult tetrahedralize(const core::TriMesh& input,
     fa.polygonlist[0].numberofvertices = 3;
     fa.polygonlist[0].vertexlist = new int[3];
     for (int k = 0; k < 3; ++k) fa.polygonlist[0].vertexlist[k] = surface.cells[f][k];
+  }
+
+  const std::vector<Vec3> holes = cavity_points(surface);
+  if (!holes.empty()) {
+    log.info("tetrahedralize: {} cavity(ies) left empty", holes.size());
+    in.numberofholes = static_cast<int>(holes.size());
+    in.holelist = new REAL[holes.size() * 3];
+    for (std::size_t h = 0; h < holes.size(); ++h)
+      for (int k = 0; k < 3; ++k) in.holelist[3 * h + static_cast<std::size_t>(k)] = holes[h][k];
   }
 
   // p: piecewise linear complex, Y: no Steiner point on the surface, Q: quiet, z: 0-based.

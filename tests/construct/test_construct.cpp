@@ -36,6 +36,28 @@ using test::tet_volume;
 
 // --- tetrahedralization ----------------------------------------------------------------------
 
+TEST(Tetrahedralize, ACavityIsLeftEmptyAndItsShellStaysBoundary) {
+  // A 4 x 4 x 4 box inside a 10 x 10 x 10 one (its shell facing the cavity), and a box nested
+  // in the cavity: the island is filled again (depth 2), the cavity around it is not.
+  core::TriMesh solid = test::make_box(10.0, 10.0, 10.0, 1);
+  const auto add = [&solid](const core::TriMesh& shell, bool inward) {
+    const int off = solid.num_points();
+    for (const auto& p : shell.points) solid.points.push_back(p);
+    for (const auto& t : shell.cells)
+      solid.cells.push_back(inward ? core::Tri{t[0] + off, t[2] + off, t[1] + off}
+                                   : core::Tri{t[0] + off, t[1] + off, t[2] + off});
+  };
+  add(test::make_box(4.0, 4.0, 4.0, 1, core::Vec3(3, 3, 3)), true);
+  const auto hollow = construct::tetrahedralize(solid);
+  EXPECT_NEAR(tet_volume(hollow.mesh), 1000.0 - 64.0, 1e-6);
+  EXPECT_EQ(inverted_tets(hollow.mesh), 0);
+  EXPECT_EQ(core::boundary(hollow.mesh).surface.num_cells(), 24);
+  add(test::make_box(1.0, 1.0, 1.0, 1, core::Vec3(4.5, 4.5, 4.5)), false);
+  const auto island = construct::tetrahedralize(solid);
+  EXPECT_NEAR(tet_volume(island.mesh), 1000.0 - 64.0 + 1.0, 1e-6);
+  EXPECT_EQ(core::boundary(island.mesh).surface.num_cells(), 36);
+}
+
 TEST(Tetrahedralize, CubeIsFilledKeepsItsSurfaceAndIsRefined) {
   const core::TriMesh cube = test::make_box(1.0, 1.0, 1.0, 1);
   const auto r = construct::tetrahedralize(cube);

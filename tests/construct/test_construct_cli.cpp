@@ -125,6 +125,26 @@ TEST(ConstructCli, BoxWritesACertifiedMapThatReadsBackWithTheReportsCounts) {
   EXPECT_EQ(j["boundary_triangles"].get<std::size_t>(), labels.size());
 }
 
+// A solid with a cavity: the inner shell is a second boundary, with its own 6 charts and 8
+// corners, and the map is certified (it used to stop at TetGen filling the cavity).
+TEST(ConstructCli, ABoxWithACavityMapsBothShells) {
+  const fs::path dir = temp_dir("cavity");
+  core::TriMesh solid = test::make_box(3.0, 3.0, 3.0, 3);
+  const core::TriMesh inner = test::make_box(1.0, 1.0, 1.0, 1, core::Vec3(1, 1, 1));
+  const int off = solid.num_points();
+  for (const auto& p : inner.points) solid.points.push_back(p);
+  for (const auto& t : inner.cells) solid.cells.push_back({t[0] + off, t[2] + off, t[1] + off});
+  write_surface(dir / "cavity.obj", solid);
+  const CliResult r = construct(dir / "cavity.obj", dir / "out");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const core::PolycubeMap map = io::read_polycube_map(dir / "out" / "model.mesh", dir / "out" / "polycube.mesh");
+  const structure::MapDiagnosis d = structure::diagnose_map(map);
+  EXPECT_TRUE(d.valid()) << (d.failures.empty() ? "" : d.failures.front());
+  const structure::PolycubeStructure s = structure::extract_structure(map);
+  EXPECT_EQ(static_cast<int>(s.charts.size()), 12);
+  EXPECT_EQ(static_cast<int>(s.corners.size()), 16);
+}
+
 TEST(ConstructCli, NoPossibleLabelingExitsThreeWithTheReasonAndWritesNothing) {
   const fs::path dir = temp_dir("tetrahedron");
   write_surface(dir / "tetrahedron.obj", tetrahedron());
