@@ -11,9 +11,11 @@
 #include "quality/scaled_jacobian.h"
 #include "quality/surface_distance.h"
 
+#include <fmt/format.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -168,6 +170,41 @@ int run_guarded(const std::function<void()>& body) {
   } catch (const std::exception& e) {
     return fail(kInternal, std::string("internal error: ") + e.what());
   }
+}
+
+namespace {
+
+//! A numeric validator: `ok` on the parsed value, `wanted` completing "must be ...".
+CLI::Validator number_check(std::function<bool(double)> ok, const std::string& wanted, const std::string& name) {
+  return CLI::Validator(
+      [ok = std::move(ok), wanted](std::string& text) -> std::string {
+        double v = 0.0;
+        std::size_t used = 0;
+        try {
+          v = std::stod(text, &used);
+        } catch (const std::exception&) {
+          return "'" + text + "' is not a number";
+        }
+        if (used != text.size()) return "'" + text + "' is not a number";
+        if (!std::isfinite(v) || !ok(v)) return "must be " + wanted + ", got " + text;
+        return {};
+      },
+      wanted, name);
+}
+
+}  // namespace
+
+CLI::Validator positive() {
+  return number_check([](double v) { return v > 0.0; }, "a positive number", "POSITIVE");
+}
+
+CLI::Validator non_negative() {
+  return number_check([](double v) { return v >= 0.0; }, "a number >= 0", "NONNEGATIVE");
+}
+
+CLI::Validator in_range(double lo, double hi) {
+  return number_check([lo, hi](double v) { return v >= lo && v <= hi; },
+                      fmt::format("a number from {:g} to {:g}", lo, hi), "RANGE");
 }
 
 }  // namespace polycube::cli

@@ -30,6 +30,14 @@ namespace polycube::cli {
 
 enum ExitCode : int { kOk = 0, kUsage = 1, kBadInput = 2, kNoResult = 3, kInternal = 4 };
 
+//! Validators for numeric options, in place of CLI11's PositiveNumber, NonNegativeNumber and
+//! Range: theirs print the largest double in full for an open bound ("not in range 0.000000 to
+//! 17976931348623157...") and let nan through a range (every comparison with nan is false).
+//! These refuse nan and infinities and say the bound in plain words.
+CLI::Validator positive();                        //!< finite and > 0
+CLI::Validator non_negative();                    //!< finite and >= 0
+CLI::Validator in_range(double lo, double hi);    //!< finite and within [lo, hi]
+
 //! Flags every subcommand understands.
 struct GlobalOptions {
   int verbose = 0;     //!< -v: info, -vv: debug

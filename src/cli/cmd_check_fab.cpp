@@ -141,7 +141,7 @@ void register_check_fab(CLI::App& app) {
   sub->add_option("--overhang", opts->print.overhang_degrees,
                   "Steepest overhang printed without support, in degrees from the vertical")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 90.0));
+      ->check(cli::in_range(0.0, 90.0));
   sub->add_option("--axis", opts->axis,
                   "The 4-axis rotation axis, PX PY PZ DX DY DZ (default: chosen, the principal "
                   "direction of the normals that lets the tool reach most)")
@@ -149,7 +149,7 @@ void register_check_fab(CLI::App& app) {
   sub->add_option("--directions", opts->mill.directions,
                   "4-axis tool directions evenly spaced about the axis")
       ->capture_default_str()
-      ->check(CLI::Range(1, 3600));
+      ->check(cli::in_range(1, 3600));
   sub->add_option("--vtk", opts->vtk,
                   "Write the surface with per-triangle fields flat_side, overhang, not_3axis, "
                   "not_4axis (ParaView)");

@@ -156,20 +156,20 @@ void register_construct(CLI::App& app) {
   auto& c = opts->construct;
   sub->add_option("--quality", c.tetrahedralize.quality, "TetGen radius-edge ratio bound (0: none)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::non_negative());
   sub->add_option("--max-volume", c.tetrahedralize.max_volume,
                   "Resolution: largest tet volume as a fraction of the bounding-box volume (0: no bound)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::non_negative());
   sub->add_option("--compactness", c.labeling.compactness,
                   "Compactness vs fidelity trade-off of the labeling (larger: fewer, smoother charts)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::non_negative());
   sub->add_option("--predeform", c.predeform.iterations,
                   "Iterations of the normal-driven pre-deformation before the labeling (0: label the model's own "
                   "normals)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::non_negative());
   sub->add_flag("!--no-align", c.align_axes,
                 "Keep the model's orientation (default: rotate it so its normals cluster on the axes before the "
                 "labeling; the written model keeps the input's positions)");
@@ -178,7 +178,7 @@ void register_construct(CLI::App& app) {
                   "the last one at the budget; then the best attempt is certified, or the failure lists what was "
                   "tried (0: no limit, and the result does not depend on the machine's speed)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::non_negative());
   sub->add_option("--keep-failed", opts->keep_failed,
                   "When certification fails, write the best attempt to this folder as uncertified_model.mesh and "
                   "uncertified_polycube.mesh (boundary labels as triangle references), for diagnosis");
@@ -187,27 +187,27 @@ void register_construct(CLI::App& app) {
                       "When --predeform is 0, also plan the attempts on the model pre-deformed by this many "
                       "iterations, with estimate-driven unfolding (0: never); the attempts run most promising first")
           ->capture_default_str()
-          ->check(CLI::NonNegativeNumber),
+          ->check(cli::non_negative()),
       sub->add_option("--smooth", c.labeling.smoothing_rounds,
                       "Sweeps of chart-boundary smoothing after the graph cut (teeth and zigzags removed)")
           ->capture_default_str()
-          ->check(CLI::NonNegativeNumber),
+          ->check(cli::non_negative()),
       sub->add_option("--predeform-weight", c.predeform.surface_weight,
                       "Weight of the normal alignment against rigidity in the pre-deformation")
           ->capture_default_str()
-          ->check(CLI::PositiveNumber),
+          ->check(cli::positive()),
       sub->add_option("--iterations", c.deform.untangle.max_iterations,
                       "Outer iterations of the untangling/optimization")
           ->capture_default_str()
-          ->check(CLI::PositiveNumber),
+          ->check(cli::positive()),
       sub->add_option("--volume-weight", c.deform.untangle.volume_weight,
                       "Weight of the volume term of the elliptic energy")
           ->capture_default_str()
-          ->check(CLI::PositiveNumber),
+          ->check(cli::positive()),
       sub->add_option("--refine-rounds", c.deform.refine_rounds,
                       "When tets stay inverted, split their edges and untangle again, at most this many times")
           ->capture_default_str()
-          ->check(CLI::NonNegativeNumber),
+          ->check(cli::non_negative()),
       sub->add_flag_callback("--no-boundary-first", [&c] { c.deform.boundary_first = construct::BoundaryFirst::Off; },
                              "Never place the boundary first (polycube edges straight between their corners, charts "
                              "untangled in 2D inside them, then the volume with the boundary fixed); only the "
@@ -224,21 +224,21 @@ void register_construct(CLI::App& app) {
       sub->add_option("--flow-iterations", c.deform.first.flow.iterations,
                       "Outer iterations of the planarity flow at most")
           ->capture_default_str()
-          ->check(CLI::PositiveNumber),
+          ->check(cli::positive()),
       sub->add_option("--flow-growth", c.deform.first.flow.growth,
                       "Growth factor of the planarity flow's attraction weight per iteration")
           ->capture_default_str()
-          ->check(CLI::Range(1.0001, 100.0)),
+          ->check(cli::in_range(1.0001, 100.0)),
       sub->add_option("--straighten", c.straighten_moves,
                       "After the repair, at most this many local relabellings removing turning points of the chart "
                       "boundaries (chains running backwards along their polycube edge's axis; 0: none)")
           ->capture_default_str()
-          ->check(CLI::NonNegativeNumber),
+          ->check(cli::non_negative()),
       sub->add_option("--unfold-moves", c.unfold_moves,
                       "After the repair, at most this many local relabellings against the folds of the fast "
                       "polycube estimate (0: none)")
           ->capture_default_str()
-          ->check(CLI::NonNegativeNumber),
+          ->check(cli::non_negative()),
   });
   // Fault injection for the tests of --keep-failed and of the fallback attempts: hidden from --help.
   sub->add_option("--inject-failure", opts->inject_failure,

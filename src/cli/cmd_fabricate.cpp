@@ -116,7 +116,7 @@ CLI::Option* add_chamber_option(CLI::App& sub, std::vector<double>& chamber) {
           "Build volume X Y Z (model units; the samples are in mm): parts too large to stand "
           "on one of their flat sides in it are split further in polycube space")
       ->expected(3)
-      ->check(CLI::PositiveNumber);
+      ->check(cli::positive());
 }
 
 void register_fabricate(CLI::App& app) {
@@ -143,7 +143,7 @@ void register_fabricate(CLI::App& app) {
                   "Printing check: steepest overhang printed without support, in degrees from "
                   "the vertical")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 90.0));
+      ->check(cli::in_range(0.0, 90.0));
   sub->add_option("--axis", opts->axis,
                   "Milling check: the 4-axis rotation axis as a point and a direction, PX PY PZ DX "
                   "DY DZ (default: chosen per part, the principal direction of its normals that "
@@ -152,7 +152,7 @@ void register_fabricate(CLI::App& app) {
   sub->add_option("--directions", opts->mill.directions,
                   "Milling check: 4-axis tool directions evenly spaced about the axis")
       ->capture_default_str()
-      ->check(CLI::Range(1, 3600));
+      ->check(cli::in_range(1, 3600));
   sub->add_flag("--no-merge", opts->no_merge,
                 "Keep the thesis's partition: no merging of boxes whose union is a box");
   sub->add_option(

@@ -137,15 +137,15 @@ CLI::App* add_common(CLI::App& app, const char* name, const char* help,
   sub->add_option("--polycube-out", opts->polycube_out,
                   "Also write the polycube-space twin (lattice coordinates)");
   auto* scale = sub->add_option("--scale", opts->grid.scale, "Lattice cells per polycube unit")
-                    ->check(CLI::PositiveNumber);
+                    ->check(cli::positive());
   auto* hexes = sub->add_option("--hexes", opts->grid.target_hexes,
                                 "Choose the scale for about this many hexes")
-                    ->check(CLI::PositiveNumber);
+                    ->check(cli::positive());
   scale->excludes(hexes);
   if (!hex) {
     auto* quads = sub->add_option("--quads", opts->grid.target_quads,
                                   "Choose the scale for about this many quads")
-                      ->check(CLI::PositiveNumber);
+                      ->check(cli::positive());
     quads->excludes(scale)->excludes(hexes);
   }
   add_sizing_option(*sub, opts->grid.sizing,
@@ -158,7 +158,7 @@ CLI::App* add_common(CLI::App& app, const char* name, const char* help,
   sub->add_option("--axis-tolerance", opts->validate.axis_tolerance,
                   "Axis-alignment tolerance of polycube boundary triangles, relative to the "
                   "bounding-box diagonal")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::non_negative())
       ->capture_default_str();
   return sub;
 }

@@ -142,28 +142,28 @@ void register_label(CLI::App& app) {
       ->required();
   sub->add_option("--quality", opts->label.tetrahedralize.quality, "TetGen radius-edge ratio bound (0: none)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::non_negative());
   sub->add_option("--max-volume", opts->label.tetrahedralize.max_volume,
                   "Largest tet volume as a fraction of the bounding-box volume (0: no bound)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::non_negative());
   sub->add_option("--compactness", opts->label.labeling.compactness,
                   "Compactness vs fidelity trade-off of the labeling (larger: fewer, smoother charts)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::non_negative());
   sub->add_option("--predeform", opts->label.predeform.iterations,
                   "Iterations of the normal-driven pre-deformation; the labeling then reads the pre-deformed "
                   "normals (0: the model's own)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::non_negative());
   sub->add_option("--smooth", opts->label.labeling.smoothing_rounds,
                   "Sweeps of chart-boundary smoothing after the graph cut (teeth and zigzags removed)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::non_negative());
   sub->add_option("--predeform-weight", opts->label.predeform.surface_weight,
                   "Weight of the normal alignment against rigidity in the pre-deformation")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(cli::positive());
   sub->callback([opts] { run_label(*opts); });
 }
 

@@ -110,76 +110,76 @@ void register_optimize(CLI::App& app) {
   sub->add_option("--report", opts->report, "Also write the report as JSON to this file");
   auto& oo = opts->opt;
   sub->add_option("--surface-weight", oo.surface_weight, "Strength of the attraction of the boundary to the target")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::non_negative())
       ->capture_default_str();
   sub->add_option("--max-hausdorff", oo.hausdorff_bound,
                   "When the result's Hausdorff distance to the target exceeds this fraction of the target's "
                   "bounding-box diagonal (thesis bound: 0.009), the optimization runs again with a stiffer attraction "
                   "on the boundary vertices beyond --max-drift")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(cli::positive());
   sub->add_option("--max-drift", oo.drift_diagonal,
                   "Boundary vertices farther than this fraction of the target's bounding-box diagonal get the stiffer "
                   "attraction of a retry: larger keeps more of the mSJ, smaller keeps the surface")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(cli::positive());
   sub->add_option("--drift-retries", oo.drift_retries,
                   "Optimizations run again, each with a 16x stiffer attraction on the boundary vertices beyond "
                   "--max-drift, while the Hausdorff distance exceeds --max-hausdorff (0: off; inputs with inverted "
                   "hexes never retry)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::non_negative());
   sub->add_option("--untangle-iterations", oo.untangle_iterations, "Outer iterations of the untangling at most")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::non_negative())
       ->capture_default_str();
   sub->add_option("--quality-rounds", oo.quality_rounds, "Quality rounds (each reweights the worst hexes)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::non_negative())
       ->capture_default_str();
   sub->add_option("--quality-iterations", oo.quality_iterations, "Outer iterations per quality round at most")
-      ->check(CLI::PositiveNumber)
+      ->check(cli::positive())
       ->capture_default_str();
   sub->add_option("--volume-weight", oo.volume_weight, "Weight of the volume term of the elliptic energy")
-      ->check(CLI::PositiveNumber)
+      ->check(cli::positive())
       ->capture_default_str();
   sub->add_option("--feature-angle", oo.feature_angle, "Dihedral angle (degrees) above which an edge is sharp")
-      ->check(CLI::Range(0.0, 180.0))
+      ->check(cli::in_range(0.0, 180.0))
       ->capture_default_str();
   sub->add_option("--feature-distance", oo.feature_distance,
                   "Match hex boundary vertices with target features within this many edge lengths")
-      ->check(CLI::PositiveNumber)
+      ->check(cli::positive())
       ->capture_default_str();
   sub->add_option("--cholesky-max-variables", oo.cholesky_max_variables,
                   "Newton systems up to this size use sparse Cholesky, larger ones truncated CG")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::non_negative())
       ->capture_default_str();
   sub->add_option("--cg-iterations", oo.cg_iterations, "CG iterations per Newton step (large meshes)")
-      ->check(CLI::PositiveNumber)
+      ->check(cli::positive())
       ->capture_default_str();
   sub->add_option("--boundary-barrier", oo.boundary_barrier,
                   "Weight of the barrier that keeps boundary quads facing the target's side, so the boundary cannot "
                   "fold over itself (0: off)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::non_negative())
       ->capture_default_str();
   sub->add_option("--size-uniformity", oo.size_uniformity,
                   "How far each hex's reference size moves from its input size towards one size for the whole "
                   "mesh (0: keep the input's grading, 1: the same volume everywhere); evens out the long hexes of "
                   "regions the polycube map compresses")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(cli::in_range(0.0, 1.0))
       ->capture_default_str();
   sub->add_option("--face-attraction", oo.face_attraction,
                   "Weight of the attraction of each boundary quad's centre to the target, relative to a vertex's: the "
                   "boundary fits the surface instead of interpolating it (0: off)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::non_negative())
       ->capture_default_str();
   sub->add_option("--fit-retry", oo.fit_retry,
                   "When the result is still beyond --max-hausdorff, run the quality rounds again with the quad centres "
                   "attracted with this weight (--face-attraction) and keep that if closer (0: no fit retry)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::non_negative())
       ->capture_default_str();
   sub->add_option("--centre-weight", oo.centre_weight,
                   "Weight of each hex's centre Jacobian (Verdict's ninth point) in the energy, relative to a corner's; "
                   "its barrier keeps hexes from twisting around a negative centre (0: corners only)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::non_negative())
       ->capture_default_str();
   sub->add_flag("--no-features", opts->no_features, "Do not preserve sharp features (surface attraction only)");
   sub->add_flag("--keep-failed", opts->keep_failed,

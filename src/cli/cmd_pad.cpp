@@ -227,24 +227,24 @@ void register_pad(CLI::App& app) {
                   "an optimized mesh: the map's distortion before the optimizer hid part of it)");
   sub->add_option("--lambda", opts->selection.lambda,
                   "Selective: weight of the layer's turns (new singularities) against its hexes")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::non_negative())
       ->capture_default_str();
   sub->add_option("--threshold", opts->analysis.threshold,
                   "Selective: boundary hexes with a scaled Jacobian at least this are left alone")
-      ->check(CLI::Range(-1.0, 1.0))
+      ->check(cli::in_range(-1.0, 1.0))
       ->capture_default_str();
   sub->add_option("--propagation", opts->analysis.propagation,
                   "Selective: steps of the soft propagation of the distortion over the boundary")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::non_negative())
       ->capture_default_str();
   sub->add_option("--time-limit", opts->selection.time_limit,
                   "Selective: seconds for the binary problem; past them the best facet set found is used and the "
                   "report says it is not proven optimal, with the gap (0: no limit)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::non_negative())
       ->capture_default_str();
   sub->add_option("--offset", opts->pad.sheet.offset,
                   "Where the new layer starts: this fraction of the local edge length inside the padded facets' hexes")
-      ->check(CLI::Range(0.01, 0.9))
+      ->check(cli::in_range(0.01, 0.9))
       ->capture_default_str();
   sub->add_option("--vtk", opts->vtk, "Also write the padded mesh as VTK with the cell fields padding_layer, "
                                       "source_hex and block (for ParaView)");

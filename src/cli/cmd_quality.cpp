@@ -183,7 +183,7 @@ void register_quality(CLI::App& app) {
   sub->add_option(
          "--tolerance", opts->tolerance,
          "Accuracy of the Hausdorff distance, relative to the target's bounding-box diagonal")
-      ->check(CLI::PositiveNumber)
+      ->check(cli::positive())
       ->capture_default_str();
   sub->callback([opts] { run_quality(*opts); });
 }

@@ -195,7 +195,7 @@ void register_run(CLI::App& app) {
                   "About this many hexes in the hex mesh (when the polycube's lattice at that size would be too "
                   "large, the hexmesh stage fails: exit code 3)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(cli::positive());
   add_sizing_option(*sub, opts->run.grid_sizing,
                   "Gridding: cells per interval between chart planes, 'uniform' (one scale) or 'map' (follows the "
                   "map's stretch, for hexes of more even size in model space)");
@@ -215,7 +215,7 @@ void register_run(CLI::App& app) {
                   "The padded mesh replaces the optimized one when its minimum scaled Jacobian is at least the "
                   "unpadded mesh's or at least this; otherwise the unpadded mesh is kept (the padded one is still "
                   "written)")
-      ->check(CLI::Range(-1.0, 1.0))
+      ->check(cli::in_range(-1.0, 1.0))
       ->capture_default_str();
   sub->add_flag("--fabricate", opts->run.fabricate,
                 "Also cut the input solid into parts along the simplified map (thesis ch. 6): "
@@ -225,22 +225,22 @@ void register_run(CLI::App& app) {
   sub->add_option("--compactness", c.labeling.compactness,
                   "Compactness vs fidelity trade-off of the labeling (larger: fewer, smoother charts)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::non_negative());
   sub->add_option("--max-volume", c.tetrahedralize.max_volume,
                   "Resolution of the tet mesh: largest tet volume as a fraction of the bounding-box volume (0: no "
                   "bound)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::non_negative());
   sub->add_option("--time-limit", c.time_limit,
                   "Construction budget in seconds: an attempt with others still planned stops at half of what is left, "
                   "the last one at the budget; then the best attempt is certified, or the failure lists what was "
                   "tried (0: no limit, and the result does not depend on the machine's speed)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::non_negative());
   sub->add_option("--lambda-min", opts->run.simplify_options.align.lambda_min,
                   "Simplification: stop before an iteration whose lambda is below this (0: until convergence)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::non_negative());
   // Fault injection for the tests (pipeline.h, RunOptions::inject_failure): hidden from --help.
   sub->add_option("--inject-failure", opts->run.inject_failure, "Testing only: make this stage fail at its start")
       ->check(CLI::IsMember({"input", "construct", "simplify", "fabricate", "hexmesh", "optimize", "quality", "simplify-step-1",

@@ -130,20 +130,20 @@ void register_simplify(CLI::App& app) {
   sub->add_option("--lambda-min", al.lambda_min,
                   "Stop before an iteration whose lambda is below this (1: one iteration, 0: until convergence)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::non_negative());
   sub->add_option("--scale", al.scale, "Lattice units per polycube unit (0: automatic, see --resolution)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::non_negative());
   sub->add_option("--resolution", al.auto_resolution, "Lattice units along the longest side when --scale is 0")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(cli::positive());
   sub->add_option("--max-iterations", al.max_iterations, "At most this many alignment iterations")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(cli::positive());
   sub->add_option("--untangle-iterations", opts->simplify.fit.untangling.max_iterations,
                   "Outer iterations of the untangler")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(cli::positive());
   sub->callback([opts] { run_simplify(*opts); });
 }
 

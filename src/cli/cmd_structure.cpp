@@ -83,7 +83,7 @@ void register_structure(CLI::App& app) {
   sub->add_option("--axis-tolerance", opts->validate.axis_tolerance,
                   "Axis-alignment tolerance of polycube boundary triangles, relative to the "
                   "bounding-box diagonal")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::non_negative())
       ->capture_default_str();
   sub->callback([opts] { run_structure(*opts); });
 }

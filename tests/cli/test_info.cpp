@@ -134,3 +134,25 @@ TEST(CliInfo, UsageErrorsExitWithOne) {
   EXPECT_EQ(run_cli("--help").exit_code, 0);
   EXPECT_EQ(run_cli("info --help").exit_code, 0);
 }
+
+// A number out of its range is refused in plain words (not the largest double printed in full),
+// and nan or infinity are refused too (a range check alone lets nan through).
+TEST(CliInfo, NumbersOutOfRangeAreRefusedInPlainWords) {
+  const struct {
+    const char* args;
+    const char* said;
+  } cases[] = {
+      {"run in.obj -o out --hexes 0", "--hexes: must be a positive number, got 0"},
+      {"run in.obj -o out --hexes inf", "--hexes: must be a positive number, got inf"},
+      {"fabricate in.obj -o out --chamber 0 10 10", "--chamber: must be a positive number, got 0"},
+      {"run in.obj -o out --padding-min-sj nan", "--padding-min-sj: must be a number from -1 to 1, got nan"},
+      {"fabricate in.obj -o out --overhang 91", "--overhang: must be a number from 0 to 90, got 91"},
+      {"run in.obj -o out --hexes many", "--hexes: 'many' is not a number"},
+  };
+  for (const auto& c : cases) {
+    const auto r = run_cli(c.args);
+    EXPECT_EQ(r.exit_code, 1) << c.args;
+    EXPECT_NE(r.err.find(c.said), std::string::npos) << c.args << ": " << r.err;
+    EXPECT_LT(r.err.size(), 200u) << c.args << ": " << r.err;
+  }
+}
