@@ -2,6 +2,7 @@
 #include "pipeline/parts_output.h"
 
 #include "core/errors.h"
+#include "core/log.h"
 #include "core/stopwatch.h"
 #include "io/mesh_io.h"
 #include "io/three_mf.h"
@@ -363,8 +364,29 @@ std::string parts_table(const Fabrication& f) {
   return text;
 }
 
+int remove_earlier_parts(const fs::path& dir) {
+  int removed = 0;
+  std::error_code ec;
+  const auto remove = [&](const fs::path& p) { removed += fs::remove(p, ec) ? 1 : 0; };
+  for (const char* name : {"parts.3mf", "exploded.ply", "exploded.vtk", "parts.json"}) remove(dir / name);
+  for (const fs::path& folder : {dir, dir / "print"}) {
+    if (!fs::is_directory(folder, ec)) continue;
+    std::vector<fs::path> parts;
+    for (const auto& entry : fs::directory_iterator(folder, ec)) {
+      const std::string name = entry.path().filename().string();
+      if (entry.is_regular_file() && name.starts_with("part_") && name.ends_with(".stl")) parts.push_back(entry.path());
+    }
+    for (const fs::path& p : parts) remove(p);
+  }
+  return removed;
+}
+
 std::vector<fs::path> write_parts(const fs::path& dir, const Fabrication& f) {
   const fabricate::Decomposition& d = f.decomposition;
+  // A folder written before holds the earlier decomposition's parts: fewer parts now would
+  // leave some of them behind, looking like parts of this one.
+  if (const int removed = remove_earlier_parts(dir); removed > 0)
+    core::logger().info("fabricate: removed {} files of an earlier decomposition in {}", removed, dir.string());
   fs::create_directories(dir);
   std::vector<fs::path> files;
   std::vector<io::ThreeMfObject> objects;

@@ -85,8 +85,13 @@ nlohmann::json parts_json(const Fabrication& f);
 //! The table printed on the terminal: one line per part, then the whole model's figures.
 std::string parts_table(const Fabrication& f);
 
-//! Write every file above into `dir` (created); returns the paths written, in order. Empty parts
-//! have no STL and are left out of the 3MF and the exploded views.
+//! Remove the files write_parts writes (part_NN.stl, print/part_NN.stl, parts.3mf,
+//! exploded.*, parts.json) from `dir`, and nothing else. Returns how many were removed.
+int remove_earlier_parts(const std::filesystem::path& dir);
+
+//! Write every file above into `dir` (created; the files of an earlier decomposition there are
+//! removed first); returns the paths written, in order. Empty parts have no STL and are left
+//! out of the 3MF and the exploded views.
 std::vector<std::filesystem::path> write_parts(const std::filesystem::path& dir,
                                                const Fabrication& f);
 

@@ -187,6 +187,24 @@ std::optional<padding::PadResult> pad_and_record(const core::HexMesh& hex, const
   return p;
 }
 
+//! Remove the files an earlier run wrote into this folder, and only those: a run that writes
+//! fewer (--no-optimize after a full run, a padding not kept) would otherwise leave an earlier
+//! hex_optimized.mesh or hex_padded.mesh beside its own files, as if it had written them.
+//! The input itself is never removed (a run may read an earlier run's construct/model.mesh).
+void clear_earlier_run(const std::filesystem::path& out_dir, const std::filesystem::path& input) {
+  namespace fs = std::filesystem;
+  int removed = 0;
+  std::error_code ec;
+  for (const char* name : {"construct/model.mesh", "construct/polycube.mesh", "simplify/model.mesh",
+                           "simplify/polycube.mesh", "hex.mesh", "quad.vtk", "hex_optimized.mesh", "hex_padded.mesh",
+                           "hex_padded.vtk", "hex_quality.vtk", "report.json"}) {
+    const fs::path p = out_dir / name;
+    if (fs::exists(p, ec) && !fs::equivalent(p, input, ec)) removed += fs::remove(p, ec) ? 1 : 0;
+  }
+  removed += remove_earlier_parts(out_dir / "parts");
+  if (removed > 0) core::logger().info("run: removed {} files of an earlier run in {}", removed, out_dir.string());
+}
+
 //! Whether the pad stage runs: padding asked for (selective by default) on an optimized mesh.
 bool pads(const RunOptions& o) { return o.hexmesh && o.optimize && o.padding != padding::PaddingMode::None; }
 
@@ -264,6 +282,8 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) throw core::InputError(fmt::format("cannot create the output folder {}: {}", out_dir.string(), ec.message()));
+
+  clear_earlier_run(out_dir, input);
 
   const int count = 2 + (o.simplify ? 1 : 0) + (o.fabricate ? 1 : 0) +
                     (o.hexmesh ? 2 + (o.optimize ? 1 : 0) +

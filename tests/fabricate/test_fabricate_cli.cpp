@@ -74,6 +74,23 @@ TEST(FabricateCli, TheTIsCutIntoTwoPartsWrittenAsStlAndJson) {
   EXPECT_NEAR(total, 4 * det, 1e-6 * total);
 }
 
+TEST(FabricateCli, AFolderWrittenBeforeKeepsNoEarlierPartButKeepsOtherFiles) {
+  const test::AffineT t = test::affine_t();
+  const fs::path dir = fresh_dir("fabricate_again");
+  io::write_polycube_map(dir / "model.mesh", dir / "polycube.mesh", t.map);
+  fs::create_directories(dir / "parts" / "print");
+  for (const fs::path& p : {dir / "parts" / "part_07.stl", dir / "parts" / "print" / "part_07.stl",
+                            dir / "parts" / "notes.txt"})
+    std::ofstream(p) << "earlier\n";
+  const auto r = test::run_cli("-q fabricate " + (dir / "model.mesh").string() + " " +
+                               (dir / "polycube.mesh").string() + " -o " + (dir / "parts").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "parts" / "part_07.stl"));
+  EXPECT_FALSE(fs::exists(dir / "parts" / "print" / "part_07.stl"));
+  EXPECT_TRUE(fs::exists(dir / "parts" / "notes.txt"));  // not ours: left alone
+  EXPECT_TRUE(fs::exists(dir / "parts" / "part_01.stl"));
+}
+
 //! Reads every part the output folder's parts.json lists: closed, manifold, outward, their
 //! volumes adding up to the solid's; the 3MF holds them all; the exploded views have every
 //! triangle. Returns parts.json.

@@ -505,6 +505,30 @@ TEST(RunCli, APaddedMeshThatLosesQualityIsNotKept) {
   EXPECT_NE(r.out.find("not kept"), std::string::npos) << r.out;
 }
 
+// A second run into the same folder leaves none of the first run's files that it does not write
+// itself: after a full run, --no-optimize leaves no hex_optimized.mesh behind.
+TEST(RunCli, ARunIntoAFolderWrittenBeforeLeavesNoEarlierOutput) {
+  const fs::path dir = temp_dir("again");
+  write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
+  ASSERT_EQ(run(dir / "box.obj", dir / "out", "--hexes 200 --padding global").exit_code, 0);
+  ASSERT_TRUE(fs::exists(dir / "out" / "hex_optimized.mesh"));
+  std::ofstream(dir / "out" / "notes.txt") << "mine\n";
+  const CliResult r = run(dir / "box.obj", dir / "out", "--hexes 200 --no-optimize");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out" / "hex_optimized.mesh"));
+  EXPECT_FALSE(fs::exists(dir / "out" / "hex_padded.mesh"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "notes.txt"));
+  // Every file of ours in the folder is one the report lists.
+  const auto j = read_report(dir / "out");
+  std::set<std::string> listed;
+  for (const auto& f : j["files"]) listed.insert(fs::path(f.get<std::string>()).lexically_normal().string());
+  for (const auto& e : fs::recursive_directory_iterator(dir / "out")) {
+    const std::string name = e.path().filename().string();
+    if (!e.is_regular_file() || name == "notes.txt" || name == "report.json") continue;
+    EXPECT_TRUE(listed.count(e.path().lexically_normal().string())) << e.path();
+  }
+}
+
 // The lattice of 2e9 hexes is beyond the gridding's bound (mesh/grid.h, max_lattice_points):
 // the request cannot be met for this polycube, which only the hexmesh stage can tell. The file
 // is fine, so not exit 2; the command line is well formed, so not exit 1: exit 3.
