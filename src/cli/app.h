@@ -43,7 +43,12 @@ struct GlobalOptions {
   int verbose = 0;     //!< -v: info, -vv: debug
   bool quiet = false;  //!< -q: errors only, no progress
   bool json = false;   //!< --json: machine-readable summary on stdout
+  //! The command line as given (argv joined by spaces), recorded in reports.
+  std::string command_line;
 };
+
+//! The program's version, as --version prints it and reports record it.
+inline constexpr const char* kVersion = "0.1.0";
 
 //! The options of the running process (set once by main).
 GlobalOptions& global_options();

@@ -43,6 +43,8 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
   nlohmann::json stages = nlohmann::json::array();
   for (const auto& s : r.stages) stages.push_back({{"stage", s.name}, {"ok", s.ok}, {"seconds", s.seconds}});
   nlohmann::json j = {
+      {"version", kVersion},
+      {"command", global_options().command_line},
       {"input", o.input},
       {"repairs", r.repairs},
       {"ok", r.ok()},

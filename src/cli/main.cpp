@@ -6,7 +6,8 @@ int main(int argc, char** argv) {
   CLI::App app{
       "polycube: polycube maps, coarse block layouts, hex and quad meshes, fabrication.\n"
       "Run `polycube <subcommand> --help` for the options of each step."};
-  app.set_version_flag("--version", "polycube 0.1.0");
+  app.set_version_flag("--version", std::string("polycube ") + kVersion);
+  for (int i = 0; i < argc; ++i) global_options().command_line += (i ? " " : "") + std::string(argv[i]);
   app.require_subcommand(1);
   app.fallthrough();
   add_global_flags(app);

@@ -305,9 +305,13 @@ void check_closed_surface(const core::TriMesh& surface) {
   if (!pairs.empty()) {
     const auto f0 = static_cast<int>(pairs.front().first.idx());
     const auto f1 = static_cast<int>(pairs.front().second.idx());
+    const core::Tri& t = oriented.cells[static_cast<std::size_t>(std::min(f0, f1))];
+    const Vec3 at = (oriented.points[t[0]] + oriented.points[t[1]] + oriented.points[t[2]]) / 3.0;
     throw core::InputError(fmt::format(
-        "the surface self-intersects: {} pair(s) of intersecting triangles (first: {} and {})",
-        pairs.size(), std::min(f0, f1), std::max(f0, f1)));
+        "the surface self-intersects: {} pair(s) of intersecting triangles (first: {} and {}, near "
+        "{}); separate the parts that cross there, or join overlapping solids into one (a boolean "
+        "union, e.g. MeshLab, or an alpha wrap)",
+        pairs.size(), std::min(f0, f1), std::max(f0, f1), where(at)));
   }
 }
 

@@ -196,6 +196,8 @@ TEST(Tetrahedralize, RefusesSelfIntersectingSurface) {
     FAIL() << "no exception";
   } catch (const core::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("self-intersect"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("near ("), std::string::npos) << e.what();  // where
+    EXPECT_NE(std::string(e.what()).find("union"), std::string::npos) << e.what();    // the remedy
   }
 }
 

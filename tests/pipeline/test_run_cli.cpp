@@ -170,6 +170,10 @@ TEST_F(RunBox, ReportRecordsEveryStageAndListsExactlyTheFilesWritten) {
   const auto j = read_report(out);
   EXPECT_TRUE(j["ok"].get<bool>());
   EXPECT_FALSE(j.contains("failure"));
+  // The report says which program made it and how it was called.
+  EXPECT_NE(test::run_cli("--version").out.find("polycube " + j["version"].get<std::string>()), std::string::npos);
+  EXPECT_NE(j["command"].get<std::string>().find(" run "), std::string::npos) << j["command"];
+  EXPECT_NE(j["command"].get<std::string>().find("--hexes 3000"), std::string::npos) << j["command"];
   // Selective padding by default: a box's map does not distort it, so nothing is padded.
   const std::vector<std::string> order{"input", "construct", "simplify", "hexmesh", "optimize", "pad", "quality"};
   EXPECT_EQ(j["padding"]["applied"], "none (nothing to pad)");
