@@ -9,6 +9,7 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <fmt/format.h>
@@ -188,17 +189,25 @@ bool ray_crosses(const Vec3& p, const Vec3& d, const Vec3& a, const Vec3& b, con
   return t > 0.0;
 }
 
-//! Whether p is inside the closed shell made of `faces` of m (crossings of a ray in a direction
-//! no axis-aligned or CAD-like face is parallel to).
+//! Whether p is strictly inside the closed shell made of `faces` of m (CGAL's exact side test;
+//! a hand-made ray parity miscounts rays through edges).
 bool inside_shell(const core::TriMesh& m, const std::vector<int>& faces, const Vec3& p) {
-  const Vec3 d = Vec3(0.5773, 0.5779, 0.5767).normalized();
-  int crossings = 0;
+  using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+  Mesh shell;
+  std::map<int, Mesh::Vertex_index> vertex;
+  for (const int f : faces)
+    for (const int v : m.cells[static_cast<std::size_t>(f)])
+      if (!vertex.count(v)) {
+        const Vec3& q = m.points[static_cast<std::size_t>(v)];
+        vertex[v] = shell.add_vertex({q.x(), q.y(), q.z()});
+      }
   for (const int f : faces) {
     const core::Tri& t = m.cells[static_cast<std::size_t>(f)];
-    double hit = 0.0;
-    crossings += ray_crosses(p, d, m.points[t[0]], m.points[t[1]], m.points[t[2]], hit) ? 1 : 0;
+    shell.add_face(vertex[t[0]], vertex[t[1]], vertex[t[2]]);
   }
-  return crossings % 2 == 1;
+  const CGAL::Side_of_triangle_mesh<Mesh, Kernel> side(shell);
+  return side(Kernel::Point_3(p.x(), p.y(), p.z())) == CGAL::ON_BOUNDED_SIDE;
 }
 
 //! The triangles of each connected shell (through shared edges).
