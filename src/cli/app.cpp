@@ -12,9 +12,11 @@
 #include "quality/surface_distance.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -48,7 +50,61 @@ class TerminalProgress : public core::ProgressClient {
   }
 };
 
+//! CLI11's formatter with the option's type and its constraints and default moved into words:
+//! the type column keeps the bare type (`N`, `X`, `TEXT` or the choices), the description ends
+//! with "(a positive number; default: 20000)".
+class HelpFormatter : public CLI::Formatter {
+ public:
+  std::string make_option_opts(const CLI::Option* opt) const override {
+    if (opt->get_type_size() == 0) return {};
+    std::string out = " " + bare_type(*opt);
+    if (opt->get_expected_max() == CLI::detail::expected_max_vector_size)
+      out += " ...";
+    else if (opt->get_expected_min() > 1)
+      out += " x " + std::to_string(opt->get_expected());
+    if (opt->get_required()) out += " (required)";
+    return out;
+  }
+
+  std::string make_option_desc(const CLI::Option* opt) const override {
+    std::vector<std::string> notes;
+    const std::string full = opt->get_type_name();
+    const std::size_t colon = full.find(':');
+    if (colon != std::string::npos) notes.push_back(full.substr(colon + 1));
+    if (!opt->get_default_str().empty()) notes.push_back("default: " + opt->get_default_str());
+    std::string desc = opt->get_description();
+    if (!notes.empty()) desc += " (" + fmt::format("{}", fmt::join(notes, "; ")) + ")";
+    return desc;
+  }
+
+ private:
+  static std::string bare_type(const CLI::Option& opt) {
+    std::string t = opt.get_type_name();
+    t = t.substr(0, t.find(':'));
+    if (t == "INT" || t == "UINT") return "N";
+    if (t == "FLOAT") return "X";
+    return t;
+  }
+};
+
 }  // namespace
+
+std::shared_ptr<CLI::FormatterBase> help_formatter() { return std::make_shared<HelpFormatter>(); }
+
+CLI::Validator one_of(const std::vector<std::string>& names, const std::vector<std::string>& values) {
+  return CLI::Validator(
+      [names, values](std::string& text) -> std::string {
+        std::string lower = text;
+        for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        for (std::size_t i = 0; i < names.size(); ++i)
+          if (lower == names[i]) {
+            text = values[i];
+            return {};
+          }
+        return fmt::format("must be one of {}, got '{}'", fmt::join(names, ", "), text);
+      },
+      "", "ONE_OF");
+}
 
 GlobalOptions& global_options() {
   static GlobalOptions g;
@@ -66,11 +122,8 @@ nlohmann::json scaled_jacobian_json(const quality::ScaledJacobianSummary& s) {
 }
 
 CLI::Option* add_sizing_option(CLI::App& sub, mesh::GridSizing& sizing, const std::string& help) {
-  return sub.add_option("--sizing", sizing, help)
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, mesh::GridSizing>{{"uniform", mesh::GridSizing::Uniform}, {"map", mesh::GridSizing::Map}},
-          CLI::ignore_case))
-      ->capture_default_str();
+  return add_choice<mesh::GridSizing>(sub, "--sizing", sizing,
+                                      {{"uniform", mesh::GridSizing::Uniform}, {"map", mesh::GridSizing::Map}}, help);
 }
 
 CLI::Option* add_target_option(CLI::App& sub, std::string& target) {

@@ -10,6 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include <functional>
+#include <memory>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -80,6 +82,31 @@ CLI::Option* add_target_option(CLI::App& sub, std::string& target);
 //! The global fold-over check as JSON: `{"ok", "reason", "inverted_hexes",
 //! "nonpositive_scaled_jacobian", "boundary_self_intersections", "crossings": [[x, y, z], ...]}`.
 nlohmann::json foldover_json(const optimize::FoldoverReport& check);
+
+//! Help that says choices and defaults in words: `--sizing uniform|map ... (default: uniform)`,
+//! `--hexes N ... (a positive number; default: 20000)`, where CLI11's own formatter prints
+//! `ENUM:value in {map->1,uniform->0} OR {1,0}=0`. Install on the top app before subcommands.
+std::shared_ptr<CLI::FormatterBase> help_formatter();
+
+//! A validator for one of `names`: turns a name (any case) into `values`' text at the same index,
+//! so that an enum option reads its number; refuses anything else with the list of names.
+CLI::Validator one_of(const std::vector<std::string>& names, const std::vector<std::string>& values);
+
+//! Add `--name a|b|c` storing an enum: `choices` in the order the help lists them; the current
+//! value of `value` is shown as the default by its name.
+template <class Enum>
+CLI::Option* add_choice(CLI::App& sub, const std::string& name, Enum& value,
+                        const std::vector<std::pair<std::string, Enum>>& choices, const std::string& help) {
+  std::vector<std::string> names, numbers;
+  std::string default_name, type;
+  for (const auto& [n, v] : choices) {
+    names.push_back(n);
+    numbers.push_back(std::to_string(static_cast<int>(v)));
+    if (v == value) default_name = n;
+    type += (type.empty() ? "" : "|") + n;
+  }
+  return sub.add_option(name, value, help)->transform(one_of(names, numbers))->type_name(type)->default_str(default_name);
+}
 
 //! Add `--sizing uniform|map` (mesh/grid.h) to a subcommand.
 CLI::Option* add_sizing_option(CLI::App& sub, mesh::GridSizing& sizing, const std::string& help);

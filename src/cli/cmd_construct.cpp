@@ -170,7 +170,7 @@ void register_construct(CLI::App& app) {
                   "normals)")
       ->capture_default_str()
       ->check(cli::non_negative());
-  sub->add_flag("!--no-align", c.align_axes,
+  sub->add_flag_callback("--no-align", [&c] { c.align_axes = false; },
                 "Keep the model's orientation (default: rotate it so its normals cluster on the axes before the "
                 "labeling; the written model keeps the input's positions)");
   sub->add_option("--time-limit", c.time_limit,

@@ -203,16 +203,12 @@ void register_run(CLI::App& app) {
                   "map's stretch, for hexes of more even size in model space)");
   sub->add_flag("--no-simplify", opts->no_simplify, "Mesh the constructed map without corner alignment");
   sub->add_flag("--no-optimize", opts->no_optimize, "Keep the gridded hex mesh as it is (and do not pad it)");
-  sub->add_option("--padding", opts->run.padding,
-                  "After optimizing: 'none', 'global' (a layer of hexes under the whole boundary) or 'selective' "
-                  "(only where the polycube map distorts the shape; thesis ch. 4); the padded mesh is optimized again "
-                  "and written as hex_padded.mesh and hex_padded.vtk")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, padding::PaddingMode>{{"none", padding::PaddingMode::None},
-                                                      {"global", padding::PaddingMode::Global},
-                                                      {"selective", padding::PaddingMode::Selective}},
-          CLI::ignore_case))
-      ->default_str("selective");
+  add_choice<padding::PaddingMode>(
+      *sub, "--padding", opts->run.padding,
+      {{"none", padding::PaddingMode::None}, {"global", padding::PaddingMode::Global}, {"selective", padding::PaddingMode::Selective}},
+      "After optimizing: 'none', 'global' (a layer of hexes under the whole boundary) or 'selective' "
+      "(only where the polycube map distorts the shape; thesis ch. 4); the padded mesh is optimized again "
+      "and written as hex_padded.mesh and hex_padded.vtk");
   sub->add_option("--padding-min-sj", opts->run.padding_usable_min_sj,
                   "The padded mesh replaces the optimized one when its minimum scaled Jacobian is at least the "
                   "unpadded mesh's or at least this; otherwise the unpadded mesh is kept (the padded one is still "

@@ -78,7 +78,8 @@ void register_structure(CLI::App& app) {
   sub->add_option("-o,--output", opts->output,
                   "Write the charts, edges and corners as a legacy VTK file (.vtk)");
   sub->add_option("--space", opts->space, "Draw the structure in polycube or model space")
-      ->check(CLI::IsMember({"polycube", "model"}))
+      ->transform(one_of({"polycube", "model"}, {"polycube", "model"}))
+      ->type_name("polycube|model")
       ->capture_default_str();
   sub->add_option("--axis-tolerance", opts->validate.axis_tolerance,
                   "Axis-alignment tolerance of polycube boundary triangles, relative to the "

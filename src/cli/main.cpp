@@ -5,9 +5,14 @@ int main(int argc, char** argv) {
   using namespace polycube::cli;
   CLI::App app{
       "polycube: polycube maps, coarse block layouts, hex and quad meshes, fabrication.\n"
-      "Run `polycube <subcommand> --help` for the options of each step."};
+      "Run `polycube <subcommand> --help` for the options of each step.",
+      "polycube"};  // named, so that usage lines say "polycube", not the path it was started by
   app.set_version_flag("--version", std::string("polycube ") + kVersion);
   for (int i = 0; i < argc; ++i) global_options().command_line += (i ? " " : "") + std::string(argv[i]);
+  app.formatter(help_formatter());
+  app.footer(
+      "Exit codes: 0 done; 1 usage error; 2 bad input (or an output that cannot be written); 3 no valid "
+      "result (the stage and reason on stderr and in report.json); 4 internal error; 130 interrupted.");
   app.require_subcommand(1);
   app.fallthrough();
   add_global_flags(app);
