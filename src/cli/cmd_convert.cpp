@@ -14,6 +14,7 @@ struct ConvertOptions {
   std::string input;
   std::string output;
   bool binary = false;
+  bool double_precision = false;
 };
 
 std::string counts_text(const core::MeshData& d) {
@@ -40,6 +41,8 @@ void register_convert(CLI::App& app) {
   sub->add_option("input", opts->input, "Input mesh file")->required();
   sub->add_option("output", opts->output, "Output mesh file (written atomically)")->required();
   sub->add_flag("--binary", opts->binary, "Write binary STL or binary little-endian PLY");
+  sub->add_flag("--double", opts->double_precision,
+                "Binary PLY: double coordinates and fields (by default float, which every other tool reads)");
   sub->callback([opts] {
     const io::Format out_format = io::format_from_path(opts->output);
     if (opts->binary && out_format != io::Format::Stl && out_format != io::Format::Ply)
@@ -47,6 +50,7 @@ void register_convert(CLI::App& app) {
     const core::MeshData d = io::read_mesh(opts->input);
     io::WriteOptions wo;
     wo.binary = opts->binary;
+    wo.double_precision = opts->double_precision;
     io::write_mesh(opts->output, d, wo);
     const io::Format in = io::format_from_path(opts->input);
     const io::Format out = out_format;

@@ -43,6 +43,9 @@ enum class Format { Obj, Off, Stl, Ply, Medit, Vtk, Msh };
 //! Options for writers whose format has variants.
 struct WriteOptions {
   bool binary = false;  //!< STL and PLY: write binary (little-endian) instead of ASCII
+  //! Binary PLY: coordinates and fields as double; by default they are float, which is what
+  //! other tools write and all of them read (Gmsh 4.8 misreads double vertices).
+  bool double_precision = false;
 };
 
 //! Format from a file name's extension (case-insensitive). \throw core::InputError if unknown.

@@ -1,10 +1,12 @@
 //! Gmsh MSH 4.1, ASCII. Reads $MeshFormat, $Entities (physical tags), $Nodes (entity blocks,
 //! parametric coordinates skipped, node tags in any order and not necessarily contiguous) and
 //! $Elements with types 1 (line -> edges), 2 (triangle), 3 (quad), 4 (tet), 5 (hex) and 15
-//! (point, ignored); other sections are skipped. When the file has $Entities, each element's
-//! label is the first physical tag of its entity (0 when it has none). MSH 2.x, 4.0 and binary
-//! files are refused. Written as one node block and one element block per run of elements of
-//! one type and label; $Entities (with physical tags = labels) only when the data has labels.
+//! (point, ignored); other sections are skipped. When some entity of $Entities has a physical
+//! tag, each element's label is the first physical tag of its entity (0 when it has none); elements of one type are
+//! kept in the order of their tags. MSH 2.x, 4.0 and binary files are refused. Written as one
+//! node block and one element block per element type and label (tags in the mesh's order);
+//! $Entities always (Gmsh needs every element block's entity declared), each with its label as
+//! physical tag (0 included) when the data has labels.
 #include "io/formats.h"
 #include "io/parse.h"
 
@@ -94,7 +96,6 @@ class MshReader {
   }
 
   void entities() {
-    have_entities_ = true;
     std::array<long long, 4> n{};
     for (long long& x : n) {
       x = s_.integer("entity count");
@@ -120,6 +121,7 @@ class MshReader {
           for (long long b = 0; b < nb; ++b) s_.integer("bounding entity tag");
         }
         physical_[{dim, tag}] = physical;
+        if (nphys > 0) have_physical_ = true;
       }
   }
 
@@ -181,13 +183,14 @@ class MshReader {
   }
 
   template <std::size_t N>
-  void read_elements(long long m, std::vector<std::array<int, N>>& cells, std::vector<int>& labels, int label) {
+  void read_elements(long long m, std::vector<std::array<int, N>>& cells, std::vector<int>& labels, int label,
+                     std::vector<long long>& tags) {
     for (long long i = 0; i < m; ++i) {
-      s_.integer("element tag");
+      tags.push_back(s_.integer("element tag"));
       std::array<int, N> c;
       for (std::size_t k = 0; k < N; ++k) c[k] = node(s_.integer("element node tag"));
       cells.push_back(c);
-      if (have_entities_) labels.push_back(label);
+      if (have_physical_) labels.push_back(label);
     }
   }
 
@@ -210,7 +213,7 @@ class MshReader {
         s_.fail("element blocks hold more than the " + std::to_string(n) + " elements declared");
       total += m;
       int label = 0;
-      if (have_entities_) {
+      if (have_physical_) {
         const auto it = physical_.find({static_cast<int>(std::clamp(dim, 0LL, 3LL)), tag});
         if (it != physical_.end()) label = it->second;
       }
@@ -218,11 +221,11 @@ class MshReader {
         case 15:  // point elements: nothing to keep
           for (long long i = 0; i < 2 * m; ++i) s_.integer("element tag or node");
           break;
-        case 1: read_elements(m, d_.edges, d_.edge_labels, label); break;
-        case 2: read_elements(m, d_.triangles, d_.triangle_labels, label); break;
-        case 3: read_elements(m, d_.quads, d_.quad_labels, label); break;
-        case 4: read_elements(m, d_.tets, d_.tet_labels, label); break;
-        case 5: read_elements(m, d_.hexes, d_.hex_labels, label); break;
+        case 1: read_elements(m, d_.edges, d_.edge_labels, label, tags_[0]); break;
+        case 2: read_elements(m, d_.triangles, d_.triangle_labels, label, tags_[1]); break;
+        case 3: read_elements(m, d_.quads, d_.quad_labels, label, tags_[2]); break;
+        case 4: read_elements(m, d_.tets, d_.tet_labels, label, tags_[3]); break;
+        case 5: read_elements(m, d_.hexes, d_.hex_labels, label, tags_[4]); break;
         default:
           s_.fail("unsupported Gmsh element type " + std::to_string(type) + " (" + gmsh_type_name(type) +
                   "); only linear triangles, quads, tets and hexes");
@@ -230,12 +233,36 @@ class MshReader {
     }
     if (total != n)
       s_.fail("$Elements declares " + std::to_string(n) + " elements, the blocks hold " + std::to_string(total));
+    in_tag_order(d_.edges, d_.edge_labels, tags_[0]);
+    in_tag_order(d_.triangles, d_.triangle_labels, tags_[1]);
+    in_tag_order(d_.quads, d_.quad_labels, tags_[2]);
+    in_tag_order(d_.tets, d_.tet_labels, tags_[3]);
+    in_tag_order(d_.hexes, d_.hex_labels, tags_[4]);
+  }
+
+  //! Elements of one type in the order of their tags: blocks group them by entity (Gmsh's and
+  //! our writer's), the tags keep the mesh's own order (which cell data and map files rely on).
+  template <class Cell>
+  static void in_tag_order(std::vector<Cell>& cells, std::vector<int>& labels, const std::vector<long long>& tags) {
+    if (std::is_sorted(tags.begin(), tags.end())) return;
+    std::vector<std::size_t> order(tags.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return tags[a] < tags[b]; });
+    std::vector<Cell> sorted_cells(cells.size());
+    for (std::size_t i = 0; i < order.size(); ++i) sorted_cells[i] = cells[order[i]];
+    cells = std::move(sorted_cells);
+    if (labels.empty()) return;
+    std::vector<int> sorted_labels(labels.size());
+    for (std::size_t i = 0; i < order.size(); ++i) sorted_labels[i] = labels[order[i]];
+    labels = std::move(sorted_labels);
   }
 
   Scanner s_;
   core::MeshData d_;
-  bool have_nodes_ = false, have_elements_ = false, have_entities_ = false;
+  bool have_nodes_ = false, have_elements_ = false;
+  bool have_physical_ = false;  // some entity has a physical tag: elements get labels
   std::map<std::pair<int, long long>, int> physical_;  // (dim, entity tag) -> first physical tag
+  std::array<std::vector<long long>, 5> tags_;          // element tags of edges, triangles, quads, tets, hexes
   bool dense_ = true;
   std::vector<int> dense_index_;
   std::unordered_map<long long, int> sparse_index_;
@@ -246,35 +273,36 @@ class MshReader {
 core::MeshData read_msh(std::string_view data, const std::string& name) { return MshReader(data, name).read(); }
 
 std::string write_msh(const core::MeshData& d, const WriteOptions& /*options*/) {
-  // Element blocks: maximal runs of one type and one label, in the order edges, triangles,
-  // quads, tets, hexes (so the element order survives a round trip).
+  // Element blocks: one per element type and label, in the order edges, triangles, quads, tets,
+  // hexes; each element's tag is its place in that order, so that readers (ours) restore it.
   struct Block {
     int dim, type, label, entity;
-    std::size_t begin, end;  // range in its element vector
+    std::vector<std::size_t> cells;  // indices into its element vector, ascending
+    std::size_t first_tag;           // tag of the type's first element
   };
   const bool labeled = !d.edge_labels.empty() || !d.triangle_labels.empty() || !d.quad_labels.empty() ||
                        !d.tet_labels.empty() || !d.hex_labels.empty();
   std::vector<Block> blocks;
   std::map<std::pair<int, int>, int> entity_of;  // (dim, label) -> entity tag (per dimension)
   std::array<int, 4> next_entity{1, 1, 1, 1};
-  auto runs = [&](std::size_t count, const std::vector<int>& labels, int dim, int type) {
-    for (std::size_t i = 0; i < count;) {
-      const int label = labels.empty() ? 0 : labels[i];
-      std::size_t j = i + 1;
-      while (j < count && (labels.empty() ? 0 : labels[j]) == label) ++j;
-      // Unlabeled data: one entity per element type; labeled: one per (dimension, label).
-      const std::pair<int, int> key{dim, labeled ? label : type};
+  std::size_t first_tag = 1;
+  auto group = [&](std::size_t count, const std::vector<int>& labels, int dim, int type) {
+    std::map<int, std::vector<std::size_t>> by_label;
+    for (std::size_t i = 0; i < count; ++i) by_label[labels.empty() ? 0 : labels[i]].push_back(i);
+    for (auto& [label, cells] : by_label) {
+      // Unlabeled data: one entity per dimension; labeled: one per (dimension, label).
+      const std::pair<int, int> key{dim, labeled ? label : 0};
       auto it = entity_of.find(key);
       if (it == entity_of.end()) it = entity_of.emplace(key, next_entity[static_cast<std::size_t>(dim)]++).first;
-      blocks.push_back({dim, type, label, it->second, i, j});
-      i = j;
+      blocks.push_back({dim, type, label, it->second, std::move(cells), first_tag});
     }
+    first_tag += count;
   };
-  runs(d.edges.size(), d.edge_labels, 1, 1);
-  runs(d.triangles.size(), d.triangle_labels, 2, 2);
-  runs(d.quads.size(), d.quad_labels, 2, 3);
-  runs(d.tets.size(), d.tet_labels, 3, 4);
-  runs(d.hexes.size(), d.hex_labels, 3, 5);
+  group(d.edges.size(), d.edge_labels, 1, 1);
+  group(d.triangles.size(), d.triangle_labels, 2, 2);
+  group(d.quads.size(), d.quad_labels, 2, 3);
+  group(d.tets.size(), d.tet_labels, 3, 4);
+  group(d.hexes.size(), d.hex_labels, 3, 5);
   const int top_dim = !d.tets.empty() || !d.hexes.empty() ? 3 : (!d.triangles.empty() || !d.quads.empty() ? 2 : 1);
 
   std::string out;
@@ -282,13 +310,14 @@ std::string write_msh(const core::MeshData& d, const WriteOptions& /*options*/) 
   out.reserve(d.points.size() * 70 + n_elems * 60);
   TextWriter w(out);
   w << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
-  if (labeled) {
-    // Bounding box of each entity's nodes.
+  {
+    // $Entities always: Gmsh refuses element blocks on entities it was not told of. Bounding
+    // box of each entity's nodes.
     std::map<std::pair<int, int>, core::BoundingBox> box;  // (dim, entity)
     std::map<std::pair<int, int>, int> label_of;
     auto grow = [&](const Block& b, const auto& cells) {
       auto [it, fresh] = box.try_emplace({b.dim, b.entity});
-      for (std::size_t c = b.begin; c < b.end; ++c)
+      for (const std::size_t c : b.cells)
         for (const int v : cells[c]) {
           if (fresh) {
             it->second.min = it->second.max = d.points[static_cast<std::size_t>(v)];
@@ -315,11 +344,12 @@ std::string write_msh(const core::MeshData& d, const WriteOptions& /*options*/) 
       const int label = label_of[key];
       w << key.second << ' ' << bb.min.x() << ' ' << bb.min.y() << ' ' << bb.min.z() << ' ' << bb.max.x() << ' '
         << bb.max.y() << ' ' << bb.max.z() << ' ';
-      if (label != 0)
-        w << "1 " << label;
+      // Labeled: every entity carries its label as physical tag, 0 included (meshio expects a
+      // physical tag on every element block once one has it); unlabeled: none.
+      if (labeled)
+        w << "1 " << label << " 0\n";  // no bounding entities
       else
-        w << '0';
-      w << " 0\n";  // no bounding entities
+        w << "0 0\n";
     }
     w << "$EndEntities\n";
   }
@@ -328,11 +358,10 @@ std::string write_msh(const core::MeshData& d, const WriteOptions& /*options*/) 
   for (std::size_t i = 1; i <= np; ++i) w << i << '\n';
   for (const core::Vec3& p : d.points) w << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
   w << "$EndNodes\n$Elements\n" << blocks.size() << ' ' << n_elems << " 1 " << n_elems << '\n';
-  std::size_t tag = 1;
   auto write_block = [&](const Block& b, const auto& cells) {
-    w << b.dim << ' ' << b.entity << ' ' << b.type << ' ' << b.end - b.begin << '\n';
-    for (std::size_t c = b.begin; c < b.end; ++c) {
-      w << tag++;
+    w << b.dim << ' ' << b.entity << ' ' << b.type << ' ' << b.cells.size() << '\n';
+    for (const std::size_t c : b.cells) {
+      w << b.first_tag + c;
       for (const int v : cells[c]) w << ' ' << v + 1;
       w << '\n';
     }

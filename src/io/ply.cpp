@@ -2,10 +2,10 @@
 //! numeric type) and the `face` element's `vertex_indices` (or `vertex_index`) list (any
 //! integer types); the other scalar properties of these two elements become point and cell
 //! data, list properties and other elements are skipped. Triangles and quads are kept, larger
-//! polygons fan-triangulated. Written as ASCII (or binary little-endian with
-//! WriteOptions::binary) with double coordinates, a uchar/int face list and the fields as
-//! double properties, except the colour channels red, green, blue, alpha, written as uchar
-//! (0..255) so that MeshLab and ParaView show them as vertex or face colours.
+//! polygons fan-triangulated. Written as ASCII with double coordinates and fields, or binary
+//! little-endian (WriteOptions::binary) with float ones (double with
+//! WriteOptions::double_precision); a uchar/int face list; the colour channels red, green,
+//! blue, alpha as uchar (0..255) so that MeshLab and ParaView show them as vertex or face colours.
 #include "core/log.h"
 #include "io/formats.h"
 #include "io/parse.h"
@@ -299,31 +299,43 @@ std::vector<OutProperty> out_properties(const std::vector<core::Field>& fields,
   return out;
 }
 
-void write_header(TextWriter& w, const core::MeshData& d, bool binary,
+//! How the real numbers go out: ASCII text, or binary float or double.
+enum class Reals { Text, Float, Double };
+
+void put_real(std::string& out, Reals reals, double v) {
+  if (reals == Reals::Float)
+    put_bytes(out, static_cast<float>(v));
+  else
+    put_bytes(out, v);
+}
+
+void write_header(TextWriter& w, const core::MeshData& d, Reals reals,
                   const std::vector<OutProperty>& vertex, const std::vector<OutProperty>& face) {
-  w << "ply\nformat " << (binary ? "binary_little_endian" : "ascii") << " 1.0\n"
+  const char* real = reals == Reals::Float ? "float " : "double ";
+  w << "ply\nformat " << (reals == Reals::Text ? "ascii" : "binary_little_endian") << " 1.0\n"
     << "comment written by polycube\n"
-    << "element vertex " << d.points.size()
-    << "\nproperty double x\nproperty double y\nproperty double z\n";
+    << "element vertex " << d.points.size() << "\nproperty " << real << "x\nproperty " << real
+    << "y\nproperty " << real << "z\n";
   for (const OutProperty& p : vertex)
-    w << "property " << (p.uchar ? "uchar " : "double ") << p.name << '\n';
+    w << "property " << (p.uchar ? "uchar " : real) << p.name << '\n';
   w << "element face " << d.triangles.size() + d.quads.size()
     << "\nproperty list uchar int vertex_indices\n";
   for (const OutProperty& p : face)
-    w << "property " << (p.uchar ? "uchar " : "double ") << p.name << '\n';
+    w << "property " << (p.uchar ? "uchar " : real) << p.name << '\n';
   w << "end_header\n";
 }
 
 //! The values of entity \p i (a vertex or a face), after what is already written of it.
-void write_values(std::string& out, bool binary, const std::vector<OutProperty>& props,
+void write_values(std::string& out, Reals reals, const std::vector<OutProperty>& props,
                   std::size_t i) {
   TextWriter w(out);
+  const bool binary = reals != Reals::Text;
   for (const OutProperty& p : props) {
     const double v = (*p.values)[i];
     if (binary && p.uchar)
       put_bytes(out, static_cast<std::uint8_t>(v));
     else if (binary)
-      put_bytes(out, v);
+      put_real(out, reals, v);
     else if (p.uchar)
       w << ' ' << static_cast<int>(v);
     else
@@ -430,27 +442,28 @@ core::MeshData read_ply(std::string_view data, const std::string& name) {
 
 std::string write_ply(const core::MeshData& d, const WriteOptions& options) {
   const bool binary = options.binary;
+  const Reals reals = !binary ? Reals::Text : options.double_precision ? Reals::Double : Reals::Float;
   const std::vector<OutProperty> vertex = out_properties(d.point_data, {"x", "y", "z"}, "vertex");
   const std::vector<OutProperty> face = out_properties(d.cell_data, {"vertex_indices"}, "face");
   std::string out;
   out.reserve(d.points.size() * (binary ? 24 : 64) * (1 + vertex.size() / 3) +
               d.num_cells() * (32 + 16 * face.size()));
   TextWriter w(out);
-  write_header(w, d, binary, vertex, face);
+  write_header(w, d, reals, vertex, face);
   for (std::size_t v = 0; v < d.points.size(); ++v) {
     const core::Vec3& p = d.points[v];
     if (binary)
-      for (int k = 0; k < 3; ++k) put_bytes(out, p[k]);
+      for (int k = 0; k < 3; ++k) put_real(out, reals, p[k]);
     else
       w << p.x() << ' ' << p.y() << ' ' << p.z();
-    write_values(out, binary, vertex, v);
+    write_values(out, reals, vertex, v);
     if (!binary) w << '\n';
   }
   // Faces in the MeshData cell order (triangles, then quads), which the cell data follow.
   std::size_t cell = 0;
   auto face_line = [&](const auto& f) {
     write_face(out, binary, f);
-    write_values(out, binary, face, cell++);
+    write_values(out, reals, face, cell++);
     if (!binary) w << '\n';
   };
   for (const core::Tri& t : d.triangles) face_line(t);

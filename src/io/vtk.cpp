@@ -1,13 +1,15 @@
-//! Legacy VTK, ASCII, DATASET UNSTRUCTURED_GRID, file versions 2.0 to 4.2 (read) and 3.0
-//! (written: VTK 9's default 5.1 cannot be read by Gmsh 4.8 or HexaLab). Cell types 5
+//! Legacy VTK, ASCII, DATASET UNSTRUCTURED_GRID, file versions 2.0 to 5.1 (read; 5.x with its
+//! OFFSETS/CONNECTIVITY cell layout, which VTK 9 and ParaView write) and 3.0 (written: 5.1
+//! cannot be read by Gmsh 4.8 or HexaLab). Cell types 5
 //! (triangle), 9 (quad), 10 (tet), 12 (hex); the vertex orders are those of core/elements.h.
 //! POINT_DATA / CELL_DATA: one-component SCALARS (with or without LOOKUP_TABLE) and
 //! one-component FIELD arrays become fields; other attributes are skipped. An integer field
 //! named "label" carries the element (cell data) or vertex (point data) labels.
-//! Binary legacy files and the 5.x layout (OFFSETS/CONNECTIVITY) are refused.
+//! Binary legacy files are refused.
 #include "io/formats.h"
 #include "io/parse.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace polycube::io::detail {
@@ -74,7 +76,7 @@ class VtkReader {
       else if (iequals(kw, "FIELD")) field(nullptr, 0);  // dataset field data: skipped
       else if (iequals(kw, "METADATA")) metadata();
       else if (iequals(kw, "OFFSETS") || iequals(kw, "CONNECTIVITY"))
-        s_.fail("VTK 5.x cell layout (OFFSETS/CONNECTIVITY) is not supported; write legacy version 3.0");
+        s_.fail(std::string(kw) + " outside a CELLS section of a version 5 file");
       else s_.fail("unknown VTK keyword " + quote(kw));
     }
     if (!have_points_) s_.fail("no POINTS section");
@@ -93,8 +95,9 @@ class VtkReader {
     const std::string_view vt = v.next();
     double version = 0.0;
     if (!parse_double(vt, version)) s_.fail("bad VTK version " + quote(vt));
-    if (version >= 5.0 || version < 2.0)
-      s_.fail("VTK file version " + std::string(vt) + " is not supported (legacy 2.0 to 4.2 only; write version 3.0)");
+    if (version >= 6.0 || version < 2.0)
+      s_.fail("VTK file version " + std::string(vt) + " is not supported (legacy 2.0 to 5.1 only)");
+    offsets_layout_ = version >= 5.0;
     s_.rest_of_line();  // title
     const std::string_view enc = s_.rest_of_line();
     if (iequals(enc, "BINARY")) s_.fail("binary VTK files are not supported (only ASCII)");
@@ -121,6 +124,7 @@ class VtkReader {
     if (!have_points_) s_.fail("CELLS before POINTS");
     if (have_cells_) s_.fail("second CELLS section");
     have_cells_ = true;
+    if (offsets_layout_) return offsets_and_connectivity();
     n_cells_ = s_.count("cells", 4);
     const int size = s_.count("cell list size", 2);
     conn_.reserve(static_cast<std::size_t>(size));
@@ -138,6 +142,38 @@ class VtkReader {
     if (conn_.size() + static_cast<std::size_t>(n_cells_) != static_cast<std::size_t>(size))
       s_.fail("CELLS declares size " + std::to_string(size) + " but the list has " +
               std::to_string(conn_.size() + static_cast<std::size_t>(n_cells_)) + " numbers");
+  }
+
+  //! Version 5's cells: "CELLS n_offsets n_connectivity", then OFFSETS (n_cells + 1 ascending
+  //! positions, the first 0) and CONNECTIVITY (the vertex indices), each with its data type.
+  void offsets_and_connectivity() {
+    const int n_offsets = s_.count("offsets", 2);
+    const int n_conn = s_.count("connectivity entries", 2);
+    n_cells_ = std::max(n_offsets - 1, 0);
+    array_header("OFFSETS");
+    starts_.reserve(static_cast<std::size_t>(n_offsets));
+    for (int i = 0; i < n_offsets; ++i) {
+      const long long at = s_.integer("cell offset");
+      if (at < (starts_.empty() ? 0 : static_cast<long long>(starts_.back())) || at > n_conn || (i == 0 && at != 0))
+        s_.fail("OFFSETS are not ascending from 0 to " + std::to_string(n_conn) + " (offset " + std::to_string(i) + " is " +
+                std::to_string(at) + ")");
+      starts_.push_back(static_cast<std::size_t>(at));
+    }
+    if (n_offsets > 0 && starts_.back() != static_cast<std::size_t>(n_conn))
+      s_.fail("the last offset is " + std::to_string(starts_.back()) + ", not the connectivity size " + std::to_string(n_conn));
+    if (starts_.empty()) starts_.push_back(0);
+    array_header("CONNECTIVITY");
+    conn_.reserve(static_cast<std::size_t>(n_conn));
+    const auto np = static_cast<long long>(d_.points.size());
+    for (int i = 0; i < n_conn; ++i) conn_.push_back(s_.index(np, 0));
+  }
+
+  //! "OFFSETS vtktypeint64" and the like: the keyword, then an integer type.
+  void array_header(const char* keyword) {
+    const std::string_view kw = s_.token(keyword);
+    if (!iequals(kw, keyword)) s_.fail(std::string("expected ") + keyword + ", found " + quote(kw));
+    const std::string_view type = s_.token("array type");
+    if (!is_int_type(type)) s_.fail(std::string(keyword) + " has type " + quote(type) + ", not an integer type");
   }
 
   void cell_types() {
@@ -363,6 +399,7 @@ class VtkReader {
 
   Scanner s_;
   core::MeshData d_;
+  bool offsets_layout_ = false;  // version 5: OFFSETS/CONNECTIVITY after CELLS
   bool have_points_ = false, have_cells_ = false, have_types_ = false;
   int n_cells_ = 0;
   std::vector<int> conn_;

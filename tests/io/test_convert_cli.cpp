@@ -62,7 +62,7 @@ TEST(ConvertCli, SurfaceChainObjOffPlyStl) {
   struct Step {
     const char *in, *out, *flags;
   };
-  const Step chain[] = {{"a.obj", "b.off", ""},          {"b.off", "c.ply", ""},   {"c.ply", "d.ply", "--binary"},
+  const Step chain[] = {{"a.obj", "b.off", ""},          {"b.off", "c.ply", ""},   {"c.ply", "d.ply", "--binary --double"},
                         {"d.ply", "e.stl", ""},          {"e.stl", "f.stl", "--binary"}, {"f.stl", "g.obj", ""}};
   for (const Step& st : chain) {
     const CliRun r = polycube("convert " + quoted(dir / st.in) + " " + quoted(dir / st.out) + " " + st.flags, dir);

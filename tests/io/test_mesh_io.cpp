@@ -20,9 +20,10 @@ namespace {
 
 using test::expect_points_near;
 
-core::MeshData round_trip(const core::MeshData& d, Format f, bool binary = false) {
+core::MeshData round_trip(const core::MeshData& d, Format f, bool binary = false, bool double_precision = false) {
   WriteOptions o;
   o.binary = binary;
+  o.double_precision = double_precision;
   const std::string bytes = write_mesh_to_string(d, f, o, "test");
   return read_mesh_from_memory(bytes, f, "test");
 }
@@ -45,24 +46,27 @@ void append(std::string& s, T v) {
 struct SurfaceCase {
   Format format;
   bool binary;
+  bool double_precision = false;
+  double tolerance = 1e-12;  //!< relative: text and doubles keep every digit, binary PLY is float by default
 };
 
 class SurfaceRoundTrip : public ::testing::TestWithParam<SurfaceCase> {};
 
 TEST_P(SurfaceRoundTrip, KeepsCountsConnectivityAndCoordinates) {
-  const auto [format, binary] = GetParam();
+  const SurfaceCase c = GetParam();
   for (const core::MeshData& d : {test::mixed_surface(), test::cube_quads()}) {
-    const core::MeshData r = round_trip(d, format, binary);
+    const core::MeshData r = round_trip(d, c.format, c.binary, c.double_precision);
     EXPECT_EQ(r.triangles, d.triangles);
     EXPECT_EQ(r.quads, d.quads);
     EXPECT_TRUE(r.tets.empty() && r.hexes.empty());
-    expect_points_near(r.points, d.points, 1e-12);
+    expect_points_near(r.points, d.points, c.tolerance);
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(Formats, SurfaceRoundTrip,
                          ::testing::Values(SurfaceCase{Format::Obj, false}, SurfaceCase{Format::Off, false},
-                                           SurfaceCase{Format::Ply, false}, SurfaceCase{Format::Ply, true},
+                                           SurfaceCase{Format::Ply, false}, SurfaceCase{Format::Ply, true, false, 0x1p-24},
+                                           SurfaceCase{Format::Ply, true, true},
                                            SurfaceCase{Format::Medit, false}, SurfaceCase{Format::Vtk, false},
                                            SurfaceCase{Format::Msh, false}));
 
@@ -395,6 +399,47 @@ TEST(Vtk, InterleavedCellsReorderCellDataAndFieldArrays) {
   EXPECT_EQ(d.cell_data[0].values, (std::vector<double>{8, 7, 9}));  // triangle first, then tets
   EXPECT_EQ(d.cell_data[1].name, "w");
   EXPECT_EQ(d.point_labels, (std::vector<int>{1, 2, 3, 4, 5}));
+}
+
+// VTK 9 and ParaView write legacy version 5.1: cells as OFFSETS and CONNECTIVITY arrays.
+TEST(Vtk, Version51OffsetsAndConnectivity) {
+  const std::string s =
+      "# vtk DataFile Version 5.1\nvtk output\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+      "POINTS 5 float\n0 0 0 1 0 0 0 1 0\n0 0 1 1 1 1\n"
+      "CELLS 4 11\nOFFSETS vtktypeint64\n0 4 7 11\nCONNECTIVITY vtktypeint64\n0 1 2 3\n0 1 2\n1 2 3 4\n"
+      "CELL_TYPES 3\n10\n5\n10\n"
+      "CELL_DATA 3\nFIELD FieldData 1\nlabel 1 3 vtktypeint64\n7 8 9\n";
+  const core::MeshData d = read_mesh_from_memory(s, Format::Vtk, "t.vtk");
+  EXPECT_EQ(d.triangles, (std::vector<core::Tri>{{0, 1, 2}}));
+  EXPECT_EQ(d.tets, (std::vector<core::Tet>{{0, 1, 2, 3}, {1, 2, 3, 4}}));
+  EXPECT_EQ(d.triangle_labels, (std::vector<int>{8}));
+  EXPECT_EQ(d.tet_labels, (std::vector<int>{7, 9}));
+  // An offset list that does not end at the connectivity's size is refused with the numbers.
+  std::string bad = s;
+  bad.replace(bad.find("0 4 7 11"), 8, "0 4 7 10");
+  EXPECT_THROW(read_mesh_from_memory(bad, Format::Vtk, "t.vtk"), core::InputError);
+}
+
+// Our .msh groups elements into one block per type and label (what meshio and Gmsh expect),
+// and the element tags keep the mesh's own order: a round trip gives the cells back in order.
+TEST(Msh, BlocksPerTypeAndLabelTagsKeepTheOrder) {
+  core::MeshData d = test::volume_mesh();
+  d.tet_labels = {3, -4, 3};  // interleaved labels: two blocks, order restored from the tags
+  d.triangle_labels = {0, 7};
+  const std::string text = write_mesh_to_string(d, Format::Msh, {}, "t.msh");
+  const std::size_t elements = text.find("$Elements\n");
+  ASSERT_NE(elements, std::string::npos);
+  // edges (one label), triangles (2), quads (1), tets (2), hexes (2): 8 blocks.
+  EXPECT_EQ(text.compare(elements + 10, 2, "8 "), 0) << text.substr(elements, 40);
+  const core::MeshData r = read_mesh_from_memory(text, Format::Msh, "t.msh");
+  EXPECT_EQ(r.tets, d.tets);
+  EXPECT_EQ(r.tet_labels, d.tet_labels);
+  EXPECT_EQ(r.triangles, d.triangles);
+  EXPECT_EQ(r.triangle_labels, d.triangle_labels);
+  EXPECT_EQ(r.hexes, d.hexes);
+  // Every entity has a physical tag, 0 included.
+  const std::string entities = text.substr(text.find("$Entities"), text.find("$EndEntities") - text.find("$Entities"));
+  EXPECT_NE(entities.find(" 1 0 0\n"), std::string::npos) << entities;
 }
 
 TEST(Msh, SparseTagsSeveralBlocksParametricNodesAndPhysicalGroups) {

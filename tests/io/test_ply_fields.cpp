@@ -36,11 +36,16 @@ core::MeshData coloured_surface() {
   return d;
 }
 
-void expect_same_fields(const std::vector<core::Field>& a, const std::vector<core::Field>& b) {
+//! \p a read back from \p b written: exact (shortest decimals, or raw doubles), or each value
+//! rounded to float when the file holds floats (binary PLY's default).
+void expect_same_fields(const std::vector<core::Field>& a, const std::vector<core::Field>& b, bool as_float = false) {
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t f = 0; f < a.size(); ++f) {
     EXPECT_EQ(a[f].name, b[f].name);
-    EXPECT_EQ(a[f].values, b[f].values) << a[f].name;  // exact: shortest decimals, or raw doubles
+    std::vector<double> expected = b[f].values;
+    if (as_float)
+      for (double& v : expected) v = static_cast<double>(static_cast<float>(v));
+    EXPECT_EQ(a[f].values, expected) << a[f].name;
   }
 }
 
@@ -53,40 +58,51 @@ std::string slurp(const fs::path& p) {
 
 std::string header_of(const std::string& ply) { return ply.substr(0, ply.find("end_header")); }
 
-class PlyFields : public ::testing::TestWithParam<bool> {};
+//! ASCII, binary with doubles, binary with floats (binary's default).
+enum class PlyKind { Ascii, BinaryDouble, BinaryFloat };
+
+WriteOptions options_of(PlyKind k) {
+  WriteOptions o;
+  o.binary = k != PlyKind::Ascii;
+  o.double_precision = k == PlyKind::BinaryDouble;
+  return o;
+}
+
+class PlyFields : public ::testing::TestWithParam<PlyKind> {};
 
 TEST_P(PlyFields, RoundTripKeepsPointAndCellData) {
   const core::MeshData d = coloured_surface();
-  WriteOptions o;
-  o.binary = GetParam();
-  const std::string ply = write_mesh_to_string(d, Format::Ply, o);
+  const bool as_float = GetParam() == PlyKind::BinaryFloat;
+  const std::string ply = write_mesh_to_string(d, Format::Ply, options_of(GetParam()));
   const std::string header = header_of(ply);
-  for (const char* line :
-       {"property uchar red\n", "property uchar green\n", "property uchar blue\n",
-        "property double quality\n", "property double temperature\n"})
+  const std::string real = as_float ? "float" : "double";
+  for (const std::string& line :
+       {std::string("property uchar red\n"), std::string("property uchar green\n"), std::string("property uchar blue\n"),
+        "property " + real + " quality\n", "property " + real + " temperature\n", "property " + real + " x\n"})
     EXPECT_NE(header.find(line), std::string::npos) << line << header;
 
   const core::MeshData r = read_mesh_from_memory(ply, Format::Ply, "t.ply");
   EXPECT_EQ(r.triangles, d.triangles);
   EXPECT_EQ(r.quads, d.quads);
-  expect_same_fields(r.cell_data, d.cell_data);
-  expect_same_fields(r.point_data, d.point_data);
+  expect_same_fields(r.cell_data, d.cell_data, as_float);
+  expect_same_fields(r.point_data, d.point_data, as_float);
 }
 
 TEST_P(PlyFields, RoundTripThroughAFile) {
   test::TempDir dir("ply_fields");
   const fs::path file = dir / "coloured.ply";
-  WriteOptions o;
-  o.binary = GetParam();
   const core::MeshData d = coloured_surface();
-  write_mesh(file, d, o);
+  write_mesh(file, d, options_of(GetParam()));
   const core::MeshData r = read_mesh(file);
-  expect_same_fields(r.cell_data, d.cell_data);
-  expect_same_fields(r.point_data, d.point_data);
+  expect_same_fields(r.cell_data, d.cell_data, GetParam() == PlyKind::BinaryFloat);
+  expect_same_fields(r.point_data, d.point_data, GetParam() == PlyKind::BinaryFloat);
 }
 
-INSTANTIATE_TEST_SUITE_P(AsciiAndBinary, PlyFields, ::testing::Values(false, true),
-                         [](const auto& p) { return p.param ? "Binary" : "Ascii"; });
+INSTANTIATE_TEST_SUITE_P(AsciiAndBinary, PlyFields,
+                         ::testing::Values(PlyKind::Ascii, PlyKind::BinaryDouble, PlyKind::BinaryFloat),
+                         [](const auto& p) {
+                           return p.param == PlyKind::Ascii ? "Ascii" : p.param == PlyKind::BinaryDouble ? "BinaryDouble" : "BinaryFloat";
+                         });
 
 TEST(PlyFieldsRead, FannedPolygonsAndCellOrder) {
   // A quad, a pentagon (fanned into 3 triangles) and a triangle, in that file order: the
