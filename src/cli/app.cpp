@@ -126,10 +126,27 @@ CLI::Option* add_sizing_option(CLI::App& sub, mesh::GridSizing& sizing, const st
                                       {{"uniform", mesh::GridSizing::Uniform}, {"map", mesh::GridSizing::Map}}, help);
 }
 
-CLI::Option* add_target_option(CLI::App& sub, std::string& target) {
-  return sub.add_option("--target", target,
-                        "Target surface (.obj .off .ply .stl .mesh; a volume mesh stands for its boundary)")
+void add_target_option(CLI::App& sub, TargetOption& target) {
+  sub.add_option("--target", target.path, "Target surface (.obj .off .ply .stl .mesh; a volume mesh stands for its boundary)")
       ->required();
+  sub.add_option("--max-start-distance", target.max_start_distance,
+                 "Refuse a mesh whose boundary is farther than this from the target before any work (Hausdorff "
+                 "distance, as a fraction of the target's bounding-box diagonal): a gridded mesh starts within a "
+                 "few percent, a mesh of another shape or placement does not")
+      ->check(positive())
+      ->capture_default_str();
+}
+
+core::TriMesh read_fitting_target(const TargetOption& target, const core::HexMesh& mesh, const std::string& mesh_file) {
+  core::TriMesh surface = read_target_surface(target.path);
+  // A coarse bound is enough to tell a wrong target from the right one.
+  const quality::SurfaceDistance d = quality::hausdorff_distance(mesh, surface, {.tolerance = 1e-2});
+  if (d.relative > target.max_start_distance)
+    throw core::InputError(fmt::format(
+        "{} is {:.3g}% of the target's diagonal away from {} (Hausdorff distance {:.6g}; at most {:.3g}% allowed): "
+        "is this the mesh's target, in the same units and position? (--max-start-distance to allow more)",
+        mesh_file, 100.0 * d.relative, target.path, d.hausdorff, 100.0 * target.max_start_distance));
+  return surface;
 }
 
 nlohmann::json foldover_json(const optimize::FoldoverReport& check) {

@@ -76,8 +76,22 @@ std::function<void(int, int, const construct::Attempt&, double)> attempt_progres
 //! boundary. \throw core::InputError when the file has neither
 core::TriMesh read_target_surface(const std::string& path);
 
-//! Add the required `--target SURFACE` of the commands that keep a mesh's boundary on a surface.
-CLI::Option* add_target_option(CLI::App& sub, std::string& target);
+//! `--target SURFACE` of the commands that keep a mesh's boundary on a surface, and how far the
+//! mesh may start from it.
+struct TargetOption {
+  std::string path;
+  //! Largest Hausdorff distance between the input mesh's boundary and the target before any
+  //! work, as a fraction of the target's bounding-box diagonal: a gridded mesh starts within a
+  //! few percent, a mesh of another shape or another placement much farther.
+  double max_start_distance = 0.1;
+};
+
+//! Add the required `--target SURFACE` and `--max-start-distance`.
+void add_target_option(CLI::App& sub, TargetOption& target);
+
+//! Read the target and check that the hex mesh read from `mesh_file` starts near it.
+//! \throw core::InputError naming both files and the distance when it is beyond the bound
+core::TriMesh read_fitting_target(const TargetOption& target, const core::HexMesh& mesh, const std::string& mesh_file);
 
 //! The global fold-over check as JSON: `{"ok", "reason", "inverted_hexes",
 //! "nonpositive_scaled_jacobian", "boundary_self_intersections", "crossings": [[x, y, z], ...]}`.

@@ -22,7 +22,7 @@ namespace {
 
 struct OptimizeCliOptions {
   std::string input;
-  std::string target;
+  TargetOption target;
   std::string output;
   std::string report;  //!< optional JSON report file
   bool keep_failed = false;
@@ -40,7 +40,7 @@ void run_optimize(const OptimizeCliOptions& o) {
   const core::MeshData d = io::read_mesh(o.input);
   if (d.hexes.empty()) throw core::InputError(o.input + ": no hexahedra to optimize");
   core::HexMesh mesh = core::hexes_of(d);
-  const core::TriMesh target = read_target_surface(o.target);
+  const core::TriMesh target = read_fitting_target(o.target, mesh, o.input);
   optimize::OptimizeOptions opt = o.opt;
   opt.features = !o.no_features;
 
@@ -52,7 +52,7 @@ void run_optimize(const OptimizeCliOptions& o) {
 
   nlohmann::json j;
   j["input"] = o.input;
-  j["target"] = o.target;
+  j["target"] = o.target.path;
   j["hexes"] = mesh.num_cells();
   j["before"] = scaled_jacobian_json(r.before);
   j["after"] = scaled_jacobian_json(r.after);
@@ -70,7 +70,7 @@ void run_optimize(const OptimizeCliOptions& o) {
   j["check"] = foldover_json(check);
   j["check"]["seconds"] = check_seconds;
   j["seconds"] = r.seconds + check_seconds;
-  std::string text = fmt::format("{}: {} hexes, target {}\n", o.input, mesh.num_cells(), o.target);
+  std::string text = fmt::format("{}: {} hexes, target {}\n", o.input, mesh.num_cells(), o.target.path);
   text += fmt::format("  {:<10}{:>10}{:>10}\n", "", "before", "after");
   text += fmt::format("  {:<10}{:>10.4f}{:>10.4f}\n", "mSJ", r.before.min, r.after.min);
   text += fmt::format("  {:<10}{:>10.4f}{:>10.4f}\n", "aSJ", r.before.average, r.after.average);

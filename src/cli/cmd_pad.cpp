@@ -20,7 +20,7 @@ namespace {
 
 struct PadCliOptions {
   std::string input;
-  std::string target;
+  TargetOption target;
   std::string output;
   std::string vtk;     //!< optional VTK copy with the padding_layer / source_hex / block fields
   std::string plan_vtk;  //!< selective: the analysis and the selection as boundary quads (VTK)
@@ -175,8 +175,8 @@ void run_pad(const PadCliOptions& o) {
   const core::MeshData d = io::read_mesh(o.input);
   if (d.hexes.empty()) throw core::InputError(o.input + ": no hexahedra to pad");
   const core::HexMesh mesh = core::hexes_of(d);
-  const core::TriMesh target = read_target_surface(o.target);
-  nlohmann::json j = {{"input", o.input}, {"target", o.target}};
+  const core::TriMesh target = read_fitting_target(o.target, mesh, o.input);
+  nlohmann::json j = {{"input", o.input}, {"target", o.target.path}};
   const Choice choice = choose_facets(mesh, o, j);
   j["padding"] = choice.how;
   if (std::none_of(choice.facets.begin(), choice.facets.end(), [](std::uint8_t f) { return f != 0; }) && o.selective) {

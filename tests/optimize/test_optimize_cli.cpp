@@ -72,19 +72,41 @@ TEST_F(OptimizeCli, BadInputIsOneLineExitTwoAndNoOutput) {
   EXPECT_FALSE(fs::exists(dir / "out.obj"));
 }
 
+// A target that is not the mesh's shape (here: the right box, moved away) is refused before any
+// work, naming the distance, by optimize and by pad; --max-start-distance lets it through.
+TEST_F(OptimizeCli, TargetFarFromTheMeshIsRefusedBeforeAnyWork) {
+  core::TriMesh far = test::box_surface();
+  for (core::Vec3& v : far.points) v += core::Vec3(100.0, 0.0, 0.0);
+  io::write_mesh(dir / "far.obj", core::to_mesh_data(far));
+  for (const char* command : {"optimize", "pad"}) {
+    SCOPED_TRACE(command);
+    const auto r = test::run_cli(std::string(command) + " " + p("hex.mesh") + " --target " + p("far.obj") + " -o " +
+                                 p("out.mesh"));
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("% of the target's diagonal away from"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--max-start-distance"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "out.mesh"));
+  }
+  const auto allowed = test::run_cli("optimize " + p("hex.mesh") + " --target " + p("far.obj") + " -o " + p("out.mesh") +
+                                     " --max-start-distance 1000 --quality-rounds 0");
+  EXPECT_EQ(allowed.err.find("away from"), std::string::npos) << allowed.err;
+}
+
 TEST_F(OptimizeCli, UnrepairableResultExitsThreeWithoutOutput) {
-  // A bar folded over itself stays folded when the optimizer is given no iterations.
+  // A bar folded over itself stays folded when the optimizer is given no iterations. (Its
+  // folded top is 41 % of the diagonal off the box: the start distance is allowed.)
   core::HexMesh m = test::box_grid(2, 2, 2);
   for (auto& q : m.points)
     if (q.z() == 1.0) q.z() = -0.5;  // the top layer pushed through the bottom: inverted hexes
   io::write_mesh(dir / "folded.mesh", core::to_mesh_data(m));
   const auto r = test::run_cli("optimize " + p("folded.mesh") + " --target " + p("box.obj") + " -o " +
-                               p("out.mesh") + " --untangle-iterations 0 --quality-rounds 0");
+                               p("out.mesh") + " --untangle-iterations 0 --quality-rounds 0 --max-start-distance 1");
   EXPECT_EQ(r.exit_code, 3) << r.err;
   EXPECT_NE(r.err.find("fold-over"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "out.mesh"));
   const auto k = test::run_cli("optimize " + p("folded.mesh") + " --target " + p("box.obj") + " -o " +
-                               p("out.mesh") + " --untangle-iterations 0 --quality-rounds 0 --keep-failed");
+                               p("out.mesh") + " --untangle-iterations 0 --quality-rounds 0 --keep-failed --max-start-distance 1");
   EXPECT_EQ(k.exit_code, 3);
   EXPECT_TRUE(fs::exists(dir / "out.mesh"));
 }
