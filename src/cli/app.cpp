@@ -14,13 +14,18 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
+#include <semaphore.h>
 #include <unistd.h>
 
 #include <cctype>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <map>
+#include <mutex>
+#include <thread>
 
 namespace polycube::cli {
 
@@ -71,7 +76,8 @@ class HelpFormatter : public CLI::Formatter {
     const std::string full = opt->get_type_name();
     const std::size_t colon = full.find(':');
     if (colon != std::string::npos) notes.push_back(full.substr(colon + 1));
-    if (!opt->get_default_str().empty()) notes.push_back("default: " + opt->get_default_str());
+    if (!opt->get_default_str().empty() && opt->get_default_str() != "[]")  // "[]": an empty list, no default
+      notes.push_back("default: " + opt->get_default_str());
     std::string desc = opt->get_description();
     if (!notes.empty()) desc += " (" + fmt::format("{}", fmt::join(notes, "; ")) + ")";
     return desc;
@@ -91,14 +97,14 @@ class HelpFormatter : public CLI::Formatter {
 
 std::shared_ptr<CLI::FormatterBase> help_formatter() { return std::make_shared<HelpFormatter>(); }
 
-CLI::Validator one_of(const std::vector<std::string>& names, const std::vector<std::string>& values) {
+CLI::Validator one_of(const std::vector<std::string>& names) {
   return CLI::Validator(
-      [names, values](std::string& text) -> std::string {
+      [names](std::string& text) -> std::string {
         std::string lower = text;
         for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
         for (std::size_t i = 0; i < names.size(); ++i)
           if (lower == names[i]) {
-            text = values[i];
+            text = names[i];
             return {};
           }
         return fmt::format("must be one of {}, got '{}'", fmt::join(names, ", "), text);
@@ -109,6 +115,77 @@ CLI::Validator one_of(const std::vector<std::string>& names, const std::vector<s
 GlobalOptions& global_options() {
   static GlobalOptions g;
   return g;
+}
+
+namespace {
+bool g_json_printed = false;  // print_result printed the command's JSON: no error object after it
+std::mutex g_interrupt_mutex;
+std::function<void()> g_on_interrupt;
+}  // namespace
+
+namespace {
+sem_t g_interrupt_signal;  // posted by the signal handler (sem_post is async-signal-safe)
+
+extern "C" void post_interrupt(int /*sig*/) { sem_post(&g_interrupt_signal); }
+}  // namespace
+
+void install_interrupt_handler() {
+  // The handler only posts a semaphore; a thread of our own waits on it and does the work,
+  // whichever thread the signal lands on (libraries start threads we do not control).
+  sem_init(&g_interrupt_signal, 0, 0);
+  std::thread([] {
+    while (sem_wait(&g_interrupt_signal) != 0) {
+    }
+    {
+      std::lock_guard lock(g_interrupt_mutex);
+      try {
+        if (g_on_interrupt) g_on_interrupt();
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "polycube: could not write the report: %s\n", e.what());
+      }
+    }
+    std::fputs("\npolycube: interrupted\n", stderr);
+    std::_Exit(130);
+  }).detach();
+  struct sigaction action {};
+  action.sa_handler = post_interrupt;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;
+  sigaction(SIGTERM, &action, nullptr);
+  struct sigaction old {};
+  // A shell starts background jobs with SIGINT ignored; keep it so (it is not meant for them).
+  if (sigaction(SIGINT, nullptr, &old) == 0 && old.sa_handler != SIG_IGN) sigaction(SIGINT, &action, nullptr);
+}
+
+void on_interrupt(std::function<void()> action) {
+  std::lock_guard lock(g_interrupt_mutex);
+  g_on_interrupt = std::move(action);
+}
+
+nlohmann::json options_json(const CLI::App& sub) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const CLI::Option* o : sub.get_options()) {
+    if (o->get_group().empty()) continue;  // hidden (testing only)
+    std::string name = o->get_lnames().empty() ? o->get_name() : o->get_lnames().front();
+    if (name == "help" || name == "help-expert") continue;
+    if (o->get_items_expected_max() == 0) {  // a flag
+      j[name] = o->count() > 0;
+    } else if (o->count() > 0) {
+      const std::vector<std::string>& given = o->results();
+      j[name] = given.size() == 1 ? nlohmann::json(given.front()) : nlohmann::json(given);
+    } else if (!o->get_default_str().empty() && o->get_default_str() != "[]") {
+      j[name] = o->get_default_str();
+    } else {
+      j[name] = nullptr;
+    }
+  }
+  return j;
+}
+
+void capture_defaults(CLI::App& app) {
+  for (CLI::Option* o : app.get_options())
+    if (o->get_items_expected_max() != 0 && o->get_default_str().empty()) o->capture_default_str();
+  for (CLI::App* sub : app.get_subcommands({})) capture_defaults(*sub);
 }
 
 nlohmann::json scaled_jacobian_json(const quality::ScaledJacobianSummary& s) {
@@ -193,8 +270,10 @@ void setup_logging_and_progress() {
 }
 
 void print_result(const nlohmann::json& json, const std::string& text) {
-  if (global_options().json)
+  if (global_options().json) {
     std::cout << json.dump(2) << '\n';
+    g_json_printed = true;
+  }
   else if (!text.empty())
     std::cout << text << (text.back() == '\n' ? "" : "\n");
 }
@@ -222,6 +301,8 @@ void add_expert_options(CLI::App& sub, const std::vector<CLI::Option*>& expert) 
 int run_guarded(const std::function<void()>& body) {
   auto fail = [](int code, const std::string& what) {
     std::cerr << "polycube: error: " << what << '\n';
+    if (global_options().json && !g_json_printed)
+      std::cout << nlohmann::json{{"status", "failed"}, {"exit_code", code}, {"error", what}}.dump(2) << '\n';
     return code;
   };
   try {

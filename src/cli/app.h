@@ -102,24 +102,30 @@ nlohmann::json foldover_json(const optimize::FoldoverReport& check);
 //! `ENUM:value in {map->1,uniform->0} OR {1,0}=0`. Install on the top app before subcommands.
 std::shared_ptr<CLI::FormatterBase> help_formatter();
 
-//! A validator for one of `names`: turns a name (any case) into `values`' text at the same index,
-//! so that an enum option reads its number; refuses anything else with the list of names.
-CLI::Validator one_of(const std::vector<std::string>& names, const std::vector<std::string>& values);
+//! A validator for one of `names`, in any case: turns it into the name as listed, refuses
+//! anything else with the list of names.
+CLI::Validator one_of(const std::vector<std::string>& names);
 
 //! Add `--name a|b|c` storing an enum: `choices` in the order the help lists them; the current
-//! value of `value` is shown as the default by its name.
+//! value of `value` is shown as the default by its name, and reports record the name given.
 template <class Enum>
 CLI::Option* add_choice(CLI::App& sub, const std::string& name, Enum& value,
                         const std::vector<std::pair<std::string, Enum>>& choices, const std::string& help) {
-  std::vector<std::string> names, numbers;
+  std::vector<std::string> names;
   std::string default_name, type;
   for (const auto& [n, v] : choices) {
     names.push_back(n);
-    numbers.push_back(std::to_string(static_cast<int>(v)));
     if (v == value) default_name = n;
     type += (type.empty() ? "" : "|") + n;
   }
-  return sub.add_option(name, value, help)->transform(one_of(names, numbers))->type_name(type)->default_str(default_name);
+  auto set = [&value, choices](const std::string& given) {
+    for (const auto& [n, v] : choices)
+      if (n == given) value = v;
+  };
+  return sub.add_option_function<std::string>(name, set, help)
+      ->transform(one_of(names))
+      ->type_name(type)
+      ->default_str(default_name);
 }
 
 //! Add `--sizing uniform|map` (mesh/grid.h) to a subcommand.
@@ -131,8 +137,26 @@ CLI::Option* add_chamber_option(CLI::App& sub, std::vector<double>& chamber);
 //! Hide `expert` from the subcommand's --help and add `--help-expert`, which lists them too.
 void add_expert_options(CLI::App& sub, const std::vector<CLI::Option*>& expert);
 
-//! Run the parsed application, mapping exceptions to exit codes and one-line messages.
+//! Run the parsed application, mapping exceptions to exit codes and one-line messages (and,
+//! with --json, a JSON object `{"status": "failed", "exit_code", "error"}` on stdout unless the
+//! command already printed its own).
 int run_guarded(const std::function<void()>& body);
+
+//! Ctrl-C (SIGINT, unless the shell started us ignoring it) and SIGTERM: run the action set by
+//! on_interrupt (`run` writes its report with status "interrupted"), say "interrupted" and exit
+//! with code 130. Call first in main.
+void install_interrupt_handler();
+
+//! What to do on an interrupt before exiting (replaces the previous action; empty: nothing).
+void on_interrupt(std::function<void()> action);
+
+//! Every option of a subcommand with its value as given, or its default (null when it has
+//! none), flags as true/false; for reports. Hidden options are left out.
+nlohmann::json options_json(const CLI::App& sub);
+
+//! Let every option of the app and its subcommands show its default in --help and in
+//! options_json (CLI11 only keeps the defaults it was asked to capture).
+void capture_defaults(CLI::App& app);
 
 // --- subcommands: each file cli/cmd_<name>.cpp defines one register function ----------------
 void register_info(CLI::App& app);

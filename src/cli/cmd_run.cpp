@@ -20,12 +20,15 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <mutex>
+#include <utility>
 
 namespace polycube::cli {
 
 namespace {
 
 struct RunCliOptions {
+  const CLI::App* command = nullptr;  //!< the parsed subcommand: its options go into the report
   std::string input;
   std::string output_dir;
   bool no_simplify = false;
@@ -39,62 +42,75 @@ std::string figure(double v, const char* fmt_spec = "{:.3f}") {
 }
 std::string count(int v) { return v < 0 ? std::string("-") : std::to_string(v); }
 
+// What was not computed is null in the report (RunResult keeps -1, and -2 for scaled Jacobians,
+// which can be -1).
+nlohmann::json known(int v) { return v < 0 ? nlohmann::json(nullptr) : nlohmann::json(v); }
+nlohmann::json known(double v) { return v < 0.0 ? nlohmann::json(nullptr) : nlohmann::json(v); }
+nlohmann::json known_sj(double v) { return v < -1.5 ? nlohmann::json(nullptr) : nlohmann::json(v); }
+
+//! What every report starts with: the program, the command, the options and the input.
+nlohmann::json report_head(const RunCliOptions& o, const char* status) {
+  return {{"status", status},
+          {"version", kVersion},
+          {"command", global_options().command_line},
+          {"options", o.command ? options_json(*o.command) : nlohmann::json::object()},
+          {"input", o.input}};
+}
+
 nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
   nlohmann::json stages = nlohmann::json::array();
   for (const auto& s : r.stages) stages.push_back({{"stage", s.name}, {"ok", s.ok}, {"seconds", s.seconds}});
-  nlohmann::json j = {
-      {"version", kVersion},
-      {"command", global_options().command_line},
-      {"input", o.input},
+  nlohmann::json j = report_head(o, r.ok() ? "ok" : "failed");
+  j.update({
       {"repairs", r.repairs},
       {"ok", r.ok()},
       {"stages", stages},
-      {"tets", r.tets},
-      {"charts", r.charts},
-      {"corners", r.corners},
-      {"isometric_average", r.isometric_average},
-      {"isometric_max", r.isometric_max},
+      {"tets", known(r.tets)},
+      {"charts", known(r.charts)},
+      {"corners", known(r.corners)},
+      {"isometric_average", known(r.isometric_average)},
+      {"isometric_max", known(r.isometric_max)},
       {"construct_attempt", r.construct_attempt},
-      {"construct_attempts", r.construct_attempts},
+      {"construct_attempts", known(r.construct_attempts)},
       {"simplify_step", r.simplify_step},
       {"simplify_tried", r.simplify_tried},
-      {"frozen_corners", r.frozen_corners},
+      {"frozen_corners", known(r.frozen_corners)},
       {"optimize_fallback", r.optimize_fallback},
       {"optimize_tried", r.optimize_tried},
       {"padding", {{"applied", r.padding},
-                   {"msj_unpadded", r.msj_unpadded},
-                   {"msj_padded", r.msj_padded},
-                   {"added_hexes", r.padding_added},
-                   {"singular_vertices_before", r.singular_vertices_before},
-                   {"singular_edges_before", r.singular_edges_before},
-                   {"singular_vertices_after", r.singular_vertices_after},
-                   {"singular_edges_after", r.singular_edges_after},
-                   {"insert_seconds", r.padding_insert_seconds},
-                   {"hard_facets", r.padding_hard_facets},
-                   {"plan_seconds", r.padding_plan_seconds},
+                   {"msj_unpadded", known_sj(r.msj_unpadded)},
+                   {"msj_padded", known_sj(r.msj_padded)},
+                   {"added_hexes", known(r.padding_added)},
+                   {"singular_vertices_before", known(r.singular_vertices_before)},
+                   {"singular_edges_before", known(r.singular_edges_before)},
+                   {"singular_vertices_after", known(r.singular_vertices_after)},
+                   {"singular_edges_after", known(r.singular_edges_after)},
+                   {"insert_seconds", known(r.padding_insert_seconds)},
+                   {"hard_facets", known(r.padding_hard_facets)},
+                   {"plan_seconds", known(r.padding_plan_seconds)},
                    {"plan_optimal", r.padding_plan_optimal},
-                   {"optimize_seconds", r.padding_optimize_seconds}}},
+                   {"optimize_seconds", known(r.padding_optimize_seconds)}}},
       {"fabricate",
-       {{"boxes", r.part_boxes},
-        {"parts", r.parts},
-        {"unfit_parts", r.unfit_parts},
-        {"support_whole_percent", r.support_whole_percent},
-        {"support_parts_percent", r.support_parts_percent},
-        {"three_axis_unreachable_percent", r.three_axis_percent},
-        {"four_axis_unreached_percent", r.four_axis_percent}}},
-      {"hex_domains_before", r.hex_domains_before},
-      {"hex_domains_after", r.hex_domains_after},
-      {"quad_domains_before", r.quad_domains_before},
-      {"quad_domains_after", r.quad_domains_after},
-      {"grid_scale", r.grid_scale},
-      {"hexes", r.hexes},
-      {"quads", r.quads},
-      {"gridded", {{"inverted", r.inverted_gridded}, {"msj", r.msj_gridded}, {"asj", r.asj_gridded}}},
-      {"final", {{"inverted", r.inverted}, {"msj", r.msj}, {"asj", r.asj}, {"domains", r.final_domains},
-                 {"hausdorff_relative", r.hausdorff_relative}}},
+       {{"boxes", known(r.part_boxes)},
+        {"parts", known(r.parts)},
+        {"unfit_parts", known(r.unfit_parts)},
+        {"support_whole_percent", known(r.support_whole_percent)},
+        {"support_parts_percent", known(r.support_parts_percent)},
+        {"three_axis_unreachable_percent", known(r.three_axis_percent)},
+        {"four_axis_unreached_percent", known(r.four_axis_percent)}}},
+      {"hex_domains_before", known(r.hex_domains_before)},
+      {"hex_domains_after", known(r.hex_domains_after)},
+      {"quad_domains_before", known(r.quad_domains_before)},
+      {"quad_domains_after", known(r.quad_domains_after)},
+      {"grid_scale", known(r.grid_scale)},
+      {"hexes", known(r.hexes)},
+      {"quads", known(r.quads)},
+      {"gridded", {{"inverted", known(r.inverted_gridded)}, {"msj", known_sj(r.msj_gridded)}, {"asj", known_sj(r.asj_gridded)}}},
+      {"final", {{"inverted", known(r.inverted)}, {"msj", known_sj(r.msj)}, {"asj", known_sj(r.asj)}, {"domains", known(r.final_domains)},
+                 {"hausdorff_relative", known(r.hausdorff_relative)}}},
       {"total_seconds", r.total_seconds},
-      {"peak_memory_mib", r.peak_memory_mib},
-      {"files", r.files}};
+      {"peak_memory_mib", known(r.peak_memory_mib)},
+      {"files", r.files}});
   if (!r.ok()) j["failure"] = {{"stage", r.failed_stage}, {"reason", r.failure}};
   return j;
 }
@@ -160,16 +176,29 @@ void run_run(RunCliOptions o) {
   }
   const bool show = !global_options().quiet && !global_options().json;
   o.run.construct.on_attempt = attempt_progress();
-  o.run.on_stage = [show](int i, int n, const std::string& name) {
-    if (show) std::fprintf(stderr, "[%d/%d] %s\n", i, n, name.c_str());
-  };
-  const pipeline::RunResult r = pipeline::run_pipeline(o.input, o.output_dir, o.run);
   const fs::path dir(o.output_dir);
+  // Interrupted: a report that says so and which stage was running (the stages' files written
+  // so far are whole: every file is written atomically).
+  auto running = std::make_shared<std::pair<std::mutex, std::string>>();
+  o.run.on_stage = [show, running](int i, int n, const std::string& name) {
+    if (show) std::fprintf(stderr, "[%d/%d] %s\n", i, n, name.c_str());
+    std::lock_guard lock(running->first);
+    running->second = name;
+  };
+  on_interrupt([&o, dir, running] {
+    nlohmann::json j = report_head(o, "interrupted");
+    std::lock_guard lock(running->first);
+    j["interrupted_stage"] = running->second.empty() ? nlohmann::json(nullptr) : nlohmann::json(running->second);
+    if (fs::is_directory(dir)) io::write_text_atomic(dir / "report.json", j.dump(2) + "\n");
+  });
+  const pipeline::RunResult r = pipeline::run_pipeline(o.input, o.output_dir, o.run);
+  on_interrupt({});
   nlohmann::json j = to_json(r, o);
   io::write_text_atomic(dir / "report.json", j.dump(2) + "\n");
   if (!r.ok()) {
     const std::string msg = fmt::format("stage {} failed: {} (earlier results and report.json are in {})",
                                         r.failed_stage, r.failure, dir.string());
+    if (global_options().json) print_result(j, "");  // the report is the JSON answer, failure included
     if (r.bad_input) throw core::InputError(msg);
     if (!global_options().json && !global_options().quiet) std::fputs(summary_table(r).c_str(), stdout);
     throw core::GeometryError(msg);
@@ -245,6 +274,7 @@ void register_run(CLI::App& app) {
                              "simplify-step-2", "simplify-step-3", "optimize-step-1", "optimize-step-2",
                              "optimize-step-3", "optimize-step-4", "pad"}))
       ->group("");
+  opts->command = sub;
   sub->callback([opts] { run_run(*opts); });
 }
 

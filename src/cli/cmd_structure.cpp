@@ -78,7 +78,7 @@ void register_structure(CLI::App& app) {
   sub->add_option("-o,--output", opts->output,
                   "Write the charts, edges and corners as a legacy VTK file (.vtk)");
   sub->add_option("--space", opts->space, "Draw the structure in polycube or model space")
-      ->transform(one_of({"polycube", "model"}, {"polycube", "model"}))
+      ->transform(one_of({"polycube", "model"}))
       ->type_name("polycube|model")
       ->capture_default_str();
   sub->add_option("--axis-tolerance", opts->validate.axis_tolerance,

@@ -3,6 +3,7 @@
 
 int main(int argc, char** argv) {
   using namespace polycube::cli;
+  install_interrupt_handler();
   CLI::App app{
       "polycube: polycube maps, coarse block layouts, hex and quad meshes, fabrication.\n"
       "Run `polycube <subcommand> --help` for the options of each step.",
@@ -33,6 +34,7 @@ int main(int argc, char** argv) {
   register_fabricate(app);
   register_check_fab(app);
 
+  capture_defaults(app);
   app.parse_complete_callback(setup_logging_and_progress);
 
   // Subcommand callbacks run inside parse(); library exceptions map to exit codes there.

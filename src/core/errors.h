@@ -3,7 +3,7 @@
 //! \brief The project's exception hierarchy and the checked-precondition macro.
 //!
 //! The library reports failure only by throwing one of these; the CLI maps them to exit codes
-//! (ARCHITECTURE §4): InputError -> 2, GeometryError/SolverError -> 3, anything else -> 4.
+//! (ARCHITECTURE §4): InputError (and OutputError) -> 2, GeometryError/SolverError -> 3, anything else -> 4.
 
 #include <stdexcept>
 #include <string>
@@ -22,6 +22,13 @@ class InputError : public Error {
   using Error::Error;
   //! "file:line: what" (line omitted when <= 0, file omitted when empty).
   InputError(const std::string& file, long line, const std::string& what);
+};
+
+//! A file could not be written (no space left, no permission, a folder in the way): the user's
+//! to fix like bad input (exit code 2), whichever stage was writing.
+class OutputError : public InputError {
+ public:
+  using InputError::InputError;
 };
 
 //! The geometry does not allow the requested operation (open surface, inverted map, ...).

@@ -62,11 +62,11 @@ void write_bytes_atomic(const fs::path& path, std::string_view bytes) {
   static std::atomic<unsigned> counter{0};
   const std::string name = path.string();
   std::error_code ec;
-  if (fs::is_directory(path, ec)) throw InputError(name, 0, "is a directory, cannot write a file there");
+  if (fs::is_directory(path, ec)) throw core::OutputError(name, 0, "is a directory, cannot write a file there");
   fs::path dir = path.parent_path();
   if (dir.empty()) dir = ".";
   if (!fs::is_directory(dir, ec))
-    throw InputError(name, 0, "cannot write: folder '" + dir.string() + "' does not exist");
+    throw core::OutputError(name, 0, "cannot write: folder '" + dir.string() + "' does not exist");
   std::string tmp_name(1, '.');  // built piecewise: GCC 12 warns falsely on "." + string
   tmp_name += path.filename().string();
   tmp_name += ".tmp.";
@@ -75,11 +75,11 @@ void write_bytes_atomic(const fs::path& path, std::string_view bytes) {
   tmp_name += std::to_string(counter++);
   const fs::path tmp = dir / tmp_name;
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-  if (fd < 0) throw InputError(name, 0, "cannot create a file in '" + dir.string() + "': " + errno_text());
+  if (fd < 0) throw core::OutputError(name, 0, "cannot create a file in '" + dir.string() + "': " + errno_text());
   auto abandon = [&](const std::string& why) {
     ::close(fd);
     ::unlink(tmp.c_str());
-    throw core::Error(name + ": write failed: " + why);
+    throw core::OutputError(name + ": write failed: " + why);
   };
   std::size_t done = 0;
   while (done < bytes.size()) {
@@ -93,12 +93,12 @@ void write_bytes_atomic(const fs::path& path, std::string_view bytes) {
   if (::close(fd) != 0) {
     const std::string why = errno_text();
     ::unlink(tmp.c_str());
-    throw core::Error(name + ": write failed: " + why);
+    throw core::OutputError(name + ": write failed: " + why);
   }
   if (::rename(tmp.c_str(), name.c_str()) != 0) {
     const std::string why = errno_text();
     ::unlink(tmp.c_str());
-    throw core::Error(name + ": cannot replace the file: " + why);
+    throw core::OutputError(name + ": cannot replace the file: " + why);
   }
 }
 

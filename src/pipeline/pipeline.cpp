@@ -78,6 +78,8 @@ class Runner {
       if (o_.inject_failure == name) throw core::GeometryError("injected failure (--inject-failure " + name + ")");
       body();
       rec.ok = true;
+    } catch (const core::OutputError& e) {
+      fail(name, e.what(), true);  // a file that cannot be written is the user's to fix, in any stage
     } catch (const core::InputError& e) {
       // Only the stages that read and process the input file can blame it (see RunResult).
       fail(name, e.what(), name == "input" || name == "construct");

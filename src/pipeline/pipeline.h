@@ -98,7 +98,8 @@ struct RunResult {
   //! The failure is the input file's fault (exit code 2): an InputError of the stages that read
   //! and process the file ("input", "construct"). A later stage's InputError (the chain's own
   //! intermediate result, or a request such as a target hex count whose lattice is too large for
-  //! this polycube) is a stage that could not reach a result (exit code 3).
+  //! this polycube) is a stage that could not reach a result (exit code 3). A file that cannot
+  //! be written (core::OutputError) is exit code 2 in any stage.
   bool bad_input = false;
   std::vector<std::string> files;  //!< files written, in order
 

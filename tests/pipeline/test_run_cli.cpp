@@ -101,6 +101,7 @@ void expect_stopped_at(const CliResult& r, const fs::path& out, const std::strin
   ASSERT_TRUE(fs::exists(out / "report.json"));
   const auto j = read_report(out);
   EXPECT_FALSE(j["ok"].get<bool>());
+  EXPECT_EQ(j["status"], "failed");
   EXPECT_EQ(j["failure"]["stage"], stage);
   const std::string reason = j["failure"]["reason"].get<std::string>();
   EXPECT_FALSE(reason.empty());
@@ -360,8 +361,8 @@ TEST(RunCli, ConstructFailureExitsThreeAndWritesNoMap) {
   EXPECT_NE(r.err.find("no valid polycube labeling"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "out" / "construct"));
   const auto j = read_report(dir / "out");
-  EXPECT_EQ(j["tets"], -1);  // the construction's figures stay "not computed"
-  EXPECT_EQ(j["hexes"], -1);
+  EXPECT_TRUE(j["tets"].is_null()) << j["tets"];  // the construction's figures stay "not computed": null
+  EXPECT_TRUE(j["hexes"].is_null()) << j["hexes"];
   // The summary table is printed for a failure of the algorithm (not for bad input).
   EXPECT_NE(r.out.find("| construct |"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("FAILED"), std::string::npos) << r.out;
@@ -380,8 +381,8 @@ TEST(RunCli, SimplifyFailureExitsThreeAndKeepsTheConstructedMap) {
   EXPECT_NE(r.err.find("injected failure"), std::string::npos) << r.err;
   const auto j = read_report(dir / "out");
   expect_valid_map(dir / "out" / "construct", j);
-  EXPECT_EQ(j["hex_domains_after"], -1);
-  EXPECT_EQ(j["hexes"], -1);
+  EXPECT_TRUE(j["hex_domains_after"].is_null()) << j["hex_domains_after"];
+  EXPECT_TRUE(j["hexes"].is_null()) << j["hexes"];
   EXPECT_NE(r.out.find("| simplify |"), std::string::npos) << r.out;
 }
 
@@ -546,8 +547,8 @@ TEST(RunCli, ImpossibleHexCountStopsTheHexmeshStageWithExitThree) {
   const core::PolycubeMap built = expect_valid_map(dir / "out" / "construct", j);
   const core::PolycubeMap simplified = expect_valid_map(dir / "out" / "simplify", j);
   EXPECT_EQ(simplified.tets, built.tets);
-  EXPECT_EQ(j["hexes"], -1);
-  EXPECT_EQ(j["grid_scale"], -1.0);
+  EXPECT_TRUE(j["hexes"].is_null()) << j["hexes"];
+  EXPECT_TRUE(j["grid_scale"].is_null()) << j["grid_scale"];
 }
 
 TEST(RunCli, ImpossibleHexCountWithoutSimplificationKeepsOnlyTheConstructedMap) {
@@ -579,8 +580,8 @@ TEST(RunCli, OptimizeFailureExitsThreeAndKeepsTheGriddedMeshes) {
   EXPECT_EQ(quads.quads.size(), core::boundary(hex).surface.cells.size());
   EXPECT_EQ(cell_field(quads, "patch_id").size(), quads.quads.size());
   // The final figures stay "not computed".
-  EXPECT_EQ(j["final"]["inverted"], -1);
-  EXPECT_EQ(j["final"]["msj"], -2.0);
+  EXPECT_TRUE(j["final"]["inverted"].is_null()) << j["final"]["inverted"];
+  EXPECT_TRUE(j["final"]["msj"].is_null()) << j["final"]["msj"];
 }
 
 TEST(RunCli, QualityFailureWithoutOptimizationKeepsTheGriddedMeshes) {
@@ -591,6 +592,68 @@ TEST(RunCli, QualityFailureWithoutOptimizationKeepsTheGriddedMeshes) {
   const auto j = read_report(dir / "out");
   EXPECT_EQ(static_cast<int>(core::hexes_of(io::read_mesh(dir / "out" / "hex.mesh")).cells.size()),
             j["hexes"].get<int>());
+}
+
+// --json on a failure: stdout holds one JSON document, the report (status "failed", the stage,
+// nulls for what was not computed, every option's value); other commands print an error object.
+TEST(RunCli, JsonOnFailureIsTheReportWithNullsAndTheOptions) {
+  const fs::path dir = temp_dir("json_failure");
+  const CliResult r = test::run_cli("--json run \"" + (dir / "missing.obj").string() + "\" -o \"" +
+                                    (dir / "out").string() + "\" --hexes 1234 --padding none");
+  EXPECT_EQ(r.exit_code, 2);
+  const auto j = nlohmann::json::parse(r.out);  // throws (fails the test) unless exactly one document
+  EXPECT_EQ(j, read_report(dir / "out"));
+  EXPECT_EQ(j["status"], "failed");
+  EXPECT_EQ(j["failure"]["stage"], "input");
+  EXPECT_TRUE(j["hexes"].is_null());
+  EXPECT_TRUE(j["final"]["msj"].is_null());
+  EXPECT_EQ(j["options"]["hexes"], "1234");
+  EXPECT_EQ(j["options"]["padding"], "none");
+  EXPECT_EQ(j["options"]["sizing"], "uniform");  // not given: the default, by name
+  EXPECT_EQ(j["options"]["no-simplify"], false);
+  EXPECT_TRUE(j["options"]["chamber"].is_null());
+  EXPECT_FALSE(j["options"].contains("inject-failure"));  // hidden
+  EXPECT_EQ(j["version"], "0.1.0");
+
+  const CliResult info = test::run_cli("--json info \"" + (dir / "missing.obj").string() + "\"");
+  EXPECT_EQ(info.exit_code, 2);
+  const auto e = nlohmann::json::parse(info.out);
+  EXPECT_EQ(e["status"], "failed");
+  EXPECT_EQ(e["exit_code"], 2);
+  EXPECT_NE(e["error"].get<std::string>().find("no such file"), std::string::npos) << info.out;
+}
+
+// A file that cannot be written is the user's to fix (exit 2, the file named), whichever stage
+// writes it: here a folder stands where the hexmesh stage writes hex.mesh.
+TEST(RunCli, AnOutputThatCannotBeWrittenIsExitTwoNamingTheFile) {
+  const fs::path dir = temp_dir("unwritable");
+  write_surface(dir / "box.obj", test::make_box(2.0, 1.0, 1.0, 2));
+  fs::create_directories(dir / "out" / "hex.mesh" / "in_the_way");
+  const CliResult r = run(dir / "box.obj", dir / "out", "--hexes 100 --no-optimize");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("stage hexmesh failed"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("hex.mesh: is a directory"), std::string::npos) << r.err;
+  EXPECT_EQ(read_report(dir / "out")["status"], "failed");
+}
+
+// SIGTERM (or Ctrl-C) during a run: exit code 130, "interrupted" on stderr, and a report with
+// status "interrupted" naming the stage that was running.
+TEST(RunCli, AnInterruptedRunLeavesAReportSayingSo) {
+  const fs::path dir = temp_dir("interrupted");
+  write_surface(dir / "box.obj", test::make_box(2.0, 1.0, 1.0, 6));
+  const fs::path out = dir / "out", err = dir / "stderr.txt";
+  // Started in the background by a shell, stopped after 2 s (the construction takes longer).
+  const std::string script = fmt::format(
+      "'{}' run '{}' -o '{}' --hexes 20000 2>'{}' & pid=$!; sleep 2; kill -TERM $pid; wait $pid; exit $?", POLYCUBE_CLI,
+      (dir / "box.obj").string(), out.string(), err.string());
+  const int status = std::system(script.c_str());  // std::system runs it with sh -c
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130) << slurp(err);
+  EXPECT_NE(slurp(err).find("polycube: interrupted"), std::string::npos) << slurp(err);
+  const auto j = read_report(out);
+  EXPECT_EQ(j["status"], "interrupted");
+  EXPECT_TRUE(j["interrupted_stage"].is_string()) << j.dump();
+  EXPECT_EQ(j["options"]["hexes"], "20000");
 }
 
 TEST(RunCli, InjectingAFailureIntoAnUnknownStageIsAUsageError) {
