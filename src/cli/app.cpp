@@ -24,6 +24,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <map>
+#include <sstream>
 #include <mutex>
 #include <thread>
 
@@ -168,8 +169,8 @@ nlohmann::json options_json(const CLI::App& sub) {
     if (o->get_group().empty()) continue;  // hidden (testing only)
     std::string name = o->get_lnames().empty() ? o->get_name() : o->get_lnames().front();
     if (name == "help" || name == "help-expert") continue;
-    if (o->get_items_expected_max() == 0) {  // a flag
-      j[name] = o->count() > 0;
+    if (o->get_items_expected_max() == 0) {  // a flag: given as such, or "=false" in a config file
+      j[name] = o->count() > 0 && o->as<bool>();
     } else if (o->count() > 0) {
       const std::vector<std::string>& given = o->results();
       j[name] = given.size() == 1 ? nlohmann::json(given.front()) : nlohmann::json(given);
@@ -267,6 +268,28 @@ void setup_logging_and_progress() {
     l->set_level(spdlog::level::warn);
   core::set_logger(l);
   if (!g.quiet && isatty(STDERR_FILENO)) core::set_progress_client(std::make_shared<TerminalProgress>());
+}
+
+void add_config_options(CLI::App& app) {
+  app.set_config("--config", "", "Read the settings from this TOML file (as --save-config writes it; what the command line gives wins)");
+  app.add_option("--save-config", global_options().save_config,
+                 "Write the settings of this command (every option, the defaults included) to this TOML file, "
+                 "then run it; --config reads them back");
+}
+
+void save_config_if_asked(const CLI::App& app) {
+  const std::string& path = global_options().save_config;
+  if (path.empty()) return;
+  // Only the subcommand's section: the global flags (-v, --json, ...) are not settings.
+  std::string text = "# polycube " + std::string(kVersion) + " settings: polycube --config FILE <subcommand> ...\n";
+  for (const CLI::App* sub : app.get_subcommands()) {
+    text += "[" + sub->get_name() + "]\n";
+    std::istringstream lines(sub->config_to_str(true, false));
+    // Left out: options without a value (an empty list or text: nothing to restore).
+    for (std::string line; std::getline(lines, line);)
+      if (!line.ends_with("=\"\"") && !line.ends_with("=\"[]\"")) text += line + "\n";
+  }
+  io::write_text_atomic(path, text);
 }
 
 void print_result(const nlohmann::json& json, const std::string& text) {

@@ -47,6 +47,7 @@ struct GlobalOptions {
   bool json = false;   //!< --json: machine-readable summary on stdout
   //! The command line as given (argv joined by spaces), recorded in reports.
   std::string command_line;
+  std::string save_config;  //!< --save-config FILE: the command's settings written there (TOML)
 };
 
 //! The program's version, as --version prints it and reports record it.
@@ -60,6 +61,14 @@ void add_global_flags(CLI::App& app);
 
 //! Install the stderr logger and, when stderr is a terminal and not quiet, the progress bar.
 void setup_logging_and_progress();
+
+//! `--config FILE` (read settings from a TOML file, as --save-config writes them; the command
+//! line wins) and `--save-config FILE` on the top app.
+void add_config_options(CLI::App& app);
+
+//! After parsing: write the settings of the command as given (and every default) to the file
+//! of --save-config, if any; the command then runs as usual.
+void save_config_if_asked(const CLI::App& app);
 
 //! Print a summary: `json` as JSON on stdout when --json was given, else `text` (unless empty).
 void print_result(const nlohmann::json& json, const std::string& text);

@@ -34,8 +34,12 @@ int main(int argc, char** argv) {
   register_fabricate(app);
   register_check_fab(app);
 
+  add_config_options(app);
   capture_defaults(app);
-  app.parse_complete_callback(setup_logging_and_progress);
+  app.parse_complete_callback([&app] {
+    setup_logging_and_progress();
+    save_config_if_asked(app);
+  });
 
   // Subcommand callbacks run inside parse(); library exceptions map to exit codes there.
   int usage = -1;

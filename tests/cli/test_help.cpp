@@ -3,6 +3,10 @@
 #include "run_cli.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
 
 #include <regex>
 #include <sstream>
@@ -60,4 +64,35 @@ TEST(CliHelp, ChoicesAreReadByNameInAnyCaseAndOthersRefused) {
   // A valid choice passes parsing: the missing input then fails as bad input (exit 2), not usage.
   const std::string out = ::testing::TempDir() + "help_choice_" + std::to_string(getpid());
   EXPECT_EQ(run_cli("run /nonexistent/in.obj -o " + out + " --sizing MAP --padding Global").exit_code, 2);
+}
+
+// --save-config writes the command's settings (TOML), --config reads them back: the same run,
+// with the same options in its report; the command line wins over the file.
+TEST(CliConfig, SavedSettingsRunTheSameCommandAgain) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(::testing::TempDir()) / ("pc_config_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string config = (dir / "settings.toml").string(), out = (dir / "out").string();
+  auto report_options = [&] {
+    std::ifstream in(dir / "out" / "report.json");
+    return nlohmann::json::parse(in)["options"];
+  };
+  const auto first = run_cli("--save-config '" + config + "' run '" + (dir / "missing.obj").string() + "' -o '" + out +
+                             "' --hexes 1234 --padding none --no-simplify");
+  EXPECT_EQ(first.exit_code, 2) << first.err;  // the input is missing: the settings are saved first
+  ASSERT_TRUE(fs::exists(config));
+  const nlohmann::json given = report_options();
+  EXPECT_EQ(given["hexes"], "1234");
+  EXPECT_EQ(given["no-simplify"], true);
+
+  const auto again = run_cli("--config '" + config + "' run");
+  EXPECT_EQ(again.exit_code, 2) << again.err;
+  EXPECT_EQ(report_options(), given);
+
+  const auto override = run_cli("--config '" + config + "' run --hexes 99");
+  EXPECT_EQ(override.exit_code, 2) << override.err;
+  EXPECT_EQ(report_options()["hexes"], "99");
+  EXPECT_EQ(report_options()["padding"], "none");
+  fs::remove_all(dir);
 }
