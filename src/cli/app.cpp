@@ -13,11 +13,13 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <spdlog/sinks/basic_file_sink.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <semaphore.h>
 #include <unistd.h>
 
 #include <cctype>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -92,6 +94,29 @@ class HelpFormatter : public CLI::Formatter {
     if (t == "FLOAT") return "X";
     return t;
   }
+};
+
+//! Progress off a terminal (a batch log): a line at most every 10 s, with the task's elapsed time.
+class LineProgress : public core::ProgressClient {
+ public:
+  void begin(const std::string& task) override {
+    start_ = last_ = std::chrono::steady_clock::now();
+    (void)task;
+  }
+  void progress(const std::string& task, double f) override {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_ < std::chrono::seconds(10)) return;
+    last_ = now;
+    std::fprintf(stderr, "      %s: %d%% (%.0f s)\n", task.c_str(), static_cast<int>(f * 100.0),
+                 std::chrono::duration<double>(now - start_).count());
+  }
+  void end(const std::string& task, bool ok) override {
+    (void)task;
+    (void)ok;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_, last_;
 };
 
 }  // namespace
@@ -251,23 +276,39 @@ void add_global_flags(CLI::App& app) {
   app.add_flag("-v,--verbose", g.verbose, "More messages on stderr (-vv for debug)");
   app.add_flag("-q,--quiet", g.quiet, "Only errors on stderr, no progress");
   app.add_flag("--json", g.json, "Print a machine-readable JSON summary on stdout");
+  app.add_option("--log", g.log_file, "Also write every message, with its time, to this file (info level; debug with -vv)");
 }
 
 void setup_logging_and_progress() {
   const GlobalOptions& g = global_options();
   auto sink = std::make_shared<spdlog::sinks::stderr_color_sink_mt>();
-  auto l = std::make_shared<spdlog::logger>("polycube", sink);
-  l->set_pattern("%^%l%$: %v");
-  if (g.quiet)
-    l->set_level(spdlog::level::err);
-  else if (g.verbose >= 2)
-    l->set_level(spdlog::level::debug);
-  else if (g.verbose == 1)
-    l->set_level(spdlog::level::info);
-  else
-    l->set_level(spdlog::level::warn);
+  sink->set_pattern("%^%l%$: %v");
+  const spdlog::level::level_enum screen = g.quiet          ? spdlog::level::err
+                                           : g.verbose >= 2 ? spdlog::level::debug
+                                           : g.verbose == 1 ? spdlog::level::info
+                                                            : spdlog::level::warn;
+  sink->set_level(screen);
+  std::vector<spdlog::sink_ptr> sinks{sink};
+  if (!g.log_file.empty()) {
+    // The log file gets the info messages too (debug with -vv), with the time of each.
+    try {
+      auto file = std::make_shared<spdlog::sinks::basic_file_sink_mt>(g.log_file, true);
+      file->set_pattern("%Y-%m-%d %H:%M:%S.%e %l: %v");
+      file->set_level(g.verbose >= 2 ? spdlog::level::debug : spdlog::level::info);
+      sinks.push_back(file);
+    } catch (const spdlog::spdlog_ex& e) {
+      throw core::OutputError(g.log_file, 0, std::string("cannot write the log: ") + e.what());
+    }
+  }
+  auto l = std::make_shared<spdlog::logger>("polycube", sinks.begin(), sinks.end());
+  l->set_level(std::min(screen, g.log_file.empty() ? screen : (g.verbose >= 2 ? spdlog::level::debug : spdlog::level::info)));
+  l->flush_on(spdlog::level::info);
   core::set_logger(l);
-  if (!g.quiet && isatty(STDERR_FILENO)) core::set_progress_client(std::make_shared<TerminalProgress>());
+  if (g.quiet || g.json) return;
+  if (isatty(STDERR_FILENO))
+    core::set_progress_client(std::make_shared<TerminalProgress>());
+  else
+    core::set_progress_client(std::make_shared<LineProgress>());
 }
 
 void add_config_options(CLI::App& app) {

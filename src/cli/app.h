@@ -47,6 +47,7 @@ struct GlobalOptions {
   bool json = false;   //!< --json: machine-readable summary on stdout
   //! The command line as given (argv joined by spaces), recorded in reports.
   std::string command_line;
+  std::string log_file;     //!< --log FILE: every message also goes there, with its time
   std::string save_config;  //!< --save-config FILE: the command's settings written there (TOML)
 };
 

@@ -96,3 +96,21 @@ TEST(CliConfig, SavedSettingsRunTheSameCommandAgain) {
   EXPECT_EQ(report_options()["padding"], "none");
   fs::remove_all(dir);
 }
+
+// --log FILE gets every message with its time, the info ones too (stderr shows warnings only).
+TEST(CliLog, TheLogFileHoldsTheInfoMessagesWithTheirTime) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(::testing::TempDir()) / ("pc_log_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const auto r = run_cli("--log '" + (dir / "run.log").string() + "' run '" + (dir / "missing.obj").string() + "' -o '" +
+                         (dir / "out").string() + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  std::ifstream in(dir / "run.log");
+  std::string first;
+  std::getline(in, first);
+  EXPECT_TRUE(std::regex_search(first, std::regex(R"(^\d{4}-\d\d-\d\d \d\d:\d\d:\d\d\.\d{3} info: run: stage 1/\d+: input$)")))
+      << first;
+  EXPECT_EQ(r.err.find("info:"), std::string::npos) << r.err;
+  fs::remove_all(dir);
+}
