@@ -18,6 +18,7 @@
 #include <semaphore.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <cmath>
@@ -34,11 +35,23 @@ namespace polycube::cli {
 
 namespace {
 
-//! A one-line progress bar on stderr, redrawn in place.
+//! A one-line progress bar on stderr, redrawn in place, with the elapsed time and an estimate
+//! of what is left. It only moves forward: a task that runs again (the untangling restarts
+//! within one optimization) continues its bar instead of starting from 0 %.
 class TerminalProgress : public core::ProgressClient {
  public:
-  void begin(const std::string& task) override { draw(task, 0.0); }
-  void progress(const std::string& task, double fraction) override { draw(task, fraction); }
+  void begin(const std::string& task) override {
+    if (task != task_) {
+      task_ = task;
+      start_ = std::chrono::steady_clock::now();
+      shown_ = 0.0;
+    }
+    draw();
+  }
+  void progress(const std::string& task, double fraction) override {
+    if (task == task_) shown_ = std::max(shown_, fraction);
+    draw();
+  }
   void end(const std::string& task, bool ok) override {
     (void)task;
     (void)ok;
@@ -47,15 +60,22 @@ class TerminalProgress : public core::ProgressClient {
   }
 
  private:
-  static void draw(const std::string& task, double f) {
+  void draw() const {
     constexpr int kWidth = 30;
-    const int filled = static_cast<int>(f * kWidth);
+    const int filled = static_cast<int>(shown_ * kWidth);
     std::string bar(static_cast<std::size_t>(filled), '#');
     bar.resize(kWidth, '.');
-    std::fprintf(stderr, "\r\033[K%-24.24s [%s] %3d%%", task.c_str(), bar.c_str(),
-                 static_cast<int>(f * 100.0));
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    std::string left;
+    if (shown_ >= 0.05 && shown_ < 1.0) left = fmt::format(", ~{:.0f} s left", elapsed * (1.0 - shown_) / shown_);
+    std::fprintf(stderr, "\r\033[K%-24.24s [%s] %3d%% %.0f s%s", task_.c_str(), bar.c_str(),
+                 static_cast<int>(shown_ * 100.0), elapsed, left.c_str());
     std::fflush(stderr);
   }
+
+  std::string task_;
+  std::chrono::steady_clock::time_point start_;
+  double shown_ = 0.0;
 };
 
 //! CLI11's formatter with the option's type and its constraints and default moved into words:
@@ -100,8 +120,9 @@ class HelpFormatter : public CLI::Formatter {
 class LineProgress : public core::ProgressClient {
  public:
   void begin(const std::string& task) override {
+    if (task == task_) return;  // the same task again: its time goes on
+    task_ = task;
     start_ = last_ = std::chrono::steady_clock::now();
-    (void)task;
   }
   void progress(const std::string& task, double f) override {
     const auto now = std::chrono::steady_clock::now();
@@ -116,6 +137,7 @@ class LineProgress : public core::ProgressClient {
   }
 
  private:
+  std::string task_;
   std::chrono::steady_clock::time_point start_, last_;
 };
 

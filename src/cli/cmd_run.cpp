@@ -48,6 +48,13 @@ nlohmann::json known(int v) { return v < 0 ? nlohmann::json(nullptr) : nlohmann:
 nlohmann::json known(double v) { return v < 0.0 ? nlohmann::json(nullptr) : nlohmann::json(v); }
 nlohmann::json known_sj(double v) { return v < -1.5 ? nlohmann::json(nullptr) : nlohmann::json(v); }
 
+//! Paths as seen from the report's folder: the report stays right when the folder moves.
+std::vector<std::string> relative_to(const std::vector<std::string>& files, const std::string& dir) {
+  std::vector<std::string> out;
+  for (const std::string& f : files) out.push_back(std::filesystem::path(f).lexically_relative(dir).string());
+  return out;
+}
+
 //! What every report starts with: the program, the command, the options and the input.
 nlohmann::json report_head(const RunCliOptions& o, const char* status) {
   return {{"status", status},
@@ -110,7 +117,7 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
                  {"hausdorff_relative", known(r.hausdorff_relative)}}},
       {"total_seconds", r.total_seconds},
       {"peak_memory_mib", known(r.peak_memory_mib)},
-      {"files", r.files}});
+      {"files", relative_to(r.files, o.output_dir)}});
   if (!r.ok()) j["failure"] = {{"stage", r.failed_stage}, {"reason", r.failure}};
   return j;
 }

@@ -103,6 +103,7 @@ void expect_stopped_at(const CliResult& r, const fs::path& out, const std::strin
   EXPECT_FALSE(j["ok"].get<bool>());
   EXPECT_EQ(j["status"], "failed");
   EXPECT_EQ(j["failure"]["stage"], stage);
+  for (const auto& f : j["files"]) EXPECT_TRUE(fs::path(f.get<std::string>()).is_relative()) << f;  // to the report
   const std::string reason = j["failure"]["reason"].get<std::string>();
   EXPECT_FALSE(reason.empty());
   EXPECT_NE(r.err.find(reason), std::string::npos) << "the reason of report.json is not on stderr: " << r.err;
@@ -117,7 +118,7 @@ void expect_stopped_at(const CliResult& r, const fs::path& out, const std::strin
   EXPECT_FALSE(stages.back()["ok"].get<bool>());
   // files: the earlier stages' present and listed (and nothing else listed), the rest absent
   std::set<std::string> listed;
-  for (const auto& f : j["files"]) listed.insert(fs::path(f.get<std::string>()).lexically_normal().string());
+  for (const auto& f : j["files"]) listed.insert((out / f.get<std::string>()).lexically_normal().string());
   std::set<std::string> kept;
   for (const auto& sf : kStageFiles) {
     const bool before = std::find(ran.begin(), ran.end(), sf.stage) != ran.end();
@@ -185,7 +186,7 @@ TEST_F(RunBox, ReportRecordsEveryStageAndListsExactlyTheFilesWritten) {
     EXPECT_GE(j["stages"][i]["seconds"].get<double>(), 0.0);
   }
   std::set<std::string> listed, expected;
-  for (const auto& f : j["files"]) listed.insert(fs::path(f.get<std::string>()).lexically_normal().string());
+  for (const auto& f : j["files"]) listed.insert((out / f.get<std::string>()).lexically_normal().string());
   for (const auto& sf : kStageFiles)
     for (const auto& f : sf.files) {
       EXPECT_TRUE(fs::exists(out / f)) << f;
@@ -526,7 +527,7 @@ TEST(RunCli, ARunIntoAFolderWrittenBeforeLeavesNoEarlierOutput) {
   // Every file of ours in the folder is one the report lists.
   const auto j = read_report(dir / "out");
   std::set<std::string> listed;
-  for (const auto& f : j["files"]) listed.insert(fs::path(f.get<std::string>()).lexically_normal().string());
+  for (const auto& f : j["files"]) listed.insert((dir / "out" / f.get<std::string>()).lexically_normal().string());
   for (const auto& e : fs::recursive_directory_iterator(dir / "out")) {
     const std::string name = e.path().filename().string();
     if (!e.is_regular_file() || name == "notes.txt" || name == "report.json") continue;
