@@ -8,7 +8,7 @@ JOBS   ?= $(shell nproc)
 OUT    ?= out/demo
 CMAKE_FLAGS ?=
 
-.PHONY: all deps configure build demo test test-heavy bench fuzz clean
+.PHONY: all deps configure build demo test test-heavy bench fuzz picture clean
 
 all: build
 
@@ -40,6 +40,16 @@ FUZZ_SECONDS ?= 60
 fuzz:
 	@scripts/install-deps.sh scripts/packages-fuzz.txt
 	@scripts/fuzz.sh $(FUZZ_SECONDS)
+
+# The README's picture (docs/img/flange.png): the flange sample, its polycube and its hex mesh,
+# rendered by VTK's Python (scripts/render_picture.py) from a `polycube run`.
+picture: build
+	@scripts/install-deps.sh scripts/packages-picture.txt
+	@mkdir -p out/picture docs/img
+	@$(BUILD)/polycube -q sample flange -o out/picture/flange.obj
+	@$(BUILD)/polycube -q run out/picture/flange.obj -o out/picture/run --hexes 3000
+	@xvfb-run -a /usr/bin/python3 scripts/render_picture.py out/picture/run out/picture/flange.obj docs/img/flange.png
+	@echo "wrote docs/img/flange.png"
 
 clean:
 	@rm -rf $(BUILD) out

@@ -48,8 +48,9 @@ class TerminalProgress : public core::ProgressClient {
     }
     draw();
   }
-  void progress(const std::string& task, double fraction) override {
+  void progress(const std::string& task, double fraction, bool total_known) override {
     if (task == task_) shown_ = std::max(shown_, fraction);
+    total_known_ = total_known;
     draw();
   }
   void end(const std::string& task, bool ok) override {
@@ -67,7 +68,8 @@ class TerminalProgress : public core::ProgressClient {
     bar.resize(kWidth, '.');
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     std::string left;
-    if (shown_ >= 0.05 && shown_ < 1.0) left = fmt::format(", ~{:.0f} s left", elapsed * (1.0 - shown_) / shown_);
+    if (total_known_ && shown_ >= 0.05 && shown_ < 1.0)
+      left = fmt::format(", ~{:.0f} s left", elapsed * (1.0 - shown_) / shown_);
     std::fprintf(stderr, "\r\033[K%-24.24s [%s] %3d%% %.0f s%s", task_.c_str(), bar.c_str(),
                  static_cast<int>(shown_ * 100.0), elapsed, left.c_str());
     std::fflush(stderr);
@@ -76,6 +78,7 @@ class TerminalProgress : public core::ProgressClient {
   std::string task_;
   std::chrono::steady_clock::time_point start_;
   double shown_ = 0.0;
+  bool total_known_ = true;
 };
 
 //! CLI11's formatter with the option's type and its constraints and default moved into words:
@@ -116,20 +119,26 @@ class HelpFormatter : public CLI::Formatter {
   }
 };
 
-//! Progress off a terminal (a batch log): a line at most every 10 s, with the task's elapsed time.
+//! Progress off a terminal (a batch log): a line at most every `interval`, with the task's
+//! elapsed time and, where the total is known, an estimate of what is left.
 class LineProgress : public core::ProgressClient {
  public:
+  LineProgress(std::FILE* out, std::chrono::milliseconds interval) : out_(out), interval_(interval) {}
   void begin(const std::string& task) override {
     if (task == task_) return;  // the same task again: its time goes on
     task_ = task;
     start_ = last_ = std::chrono::steady_clock::now();
   }
-  void progress(const std::string& task, double f) override {
+  void progress(const std::string& task, double f, bool total_known) override {
     const auto now = std::chrono::steady_clock::now();
-    if (now - last_ < std::chrono::seconds(10)) return;
+    if (now - last_ < interval_) return;
     last_ = now;
-    std::fprintf(stderr, "      %s: %d%% (%.0f s)\n", task.c_str(), static_cast<int>(f * 100.0),
-                 std::chrono::duration<double>(now - start_).count());
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    std::string left;
+    if (total_known && f >= 0.05 && f < 1.0) left = fmt::format(", ~{:.0f} s left", elapsed * (1.0 - f) / f);
+    std::fprintf(out_, "      %s: %d%% (%.0f s%s)\n", task.c_str(), static_cast<int>(f * 100.0), elapsed,
+                 left.c_str());
+    std::fflush(out_);
   }
   void end(const std::string& task, bool ok) override {
     (void)task;
@@ -137,6 +146,8 @@ class LineProgress : public core::ProgressClient {
   }
 
  private:
+  std::FILE* out_;
+  std::chrono::milliseconds interval_;
   std::string task_;
   std::chrono::steady_clock::time_point start_, last_;
 };
@@ -144,6 +155,10 @@ class LineProgress : public core::ProgressClient {
 }  // namespace
 
 std::shared_ptr<CLI::FormatterBase> help_formatter() { return std::make_shared<HelpFormatter>(); }
+
+std::shared_ptr<core::ProgressClient> line_progress(std::FILE* out, std::chrono::milliseconds interval) {
+  return std::make_shared<LineProgress>(out, interval);
+}
 
 CLI::Validator one_of(const std::vector<std::string>& names) {
   return CLI::Validator(
@@ -304,7 +319,8 @@ void add_global_flags(CLI::App& app) {
 void setup_logging_and_progress() {
   const GlobalOptions& g = global_options();
   auto sink = std::make_shared<spdlog::sinks::stderr_color_sink_mt>();
-  sink->set_pattern("%^%l%$: %v");
+  // On a terminal, a message first clears the progress bar's line.
+  sink->set_pattern(isatty(STDERR_FILENO) ? "\r\033[K%^%l%$: %v" : "%^%l%$: %v");
   const spdlog::level::level_enum screen = g.quiet          ? spdlog::level::err
                                            : g.verbose >= 2 ? spdlog::level::debug
                                            : g.verbose == 1 ? spdlog::level::info
@@ -330,7 +346,7 @@ void setup_logging_and_progress() {
   if (isatty(STDERR_FILENO))
     core::set_progress_client(std::make_shared<TerminalProgress>());
   else
-    core::set_progress_client(std::make_shared<LineProgress>());
+    core::set_progress_client(line_progress(stderr, std::chrono::seconds(10)));
 }
 
 void add_config_options(CLI::App& app) {
@@ -355,6 +371,12 @@ void save_config_if_asked(const CLI::App& app) {
   io::write_text_atomic(path, text);
 }
 
+void print_status(const std::string& line) {
+  // On a terminal, over the progress bar's line (it is drawn again at its next move).
+  std::fprintf(stderr, "%s%s\n", isatty(STDERR_FILENO) ? "\r\033[K" : "", line.c_str());
+  std::fflush(stderr);
+}
+
 void print_result(const nlohmann::json& json, const std::string& text) {
   if (global_options().json) {
     std::cout << json.dump(2) << '\n';
@@ -367,7 +389,7 @@ void print_result(const nlohmann::json& json, const std::string& text) {
 std::function<void(int, int, const construct::Attempt&, double)> attempt_progress() {
   const bool show = !global_options().quiet && !global_options().json;
   return [show](int i, int n, const construct::Attempt& attempt, double seconds) {
-    if (show) std::fprintf(stderr, "      construct attempt %d/%d: %s (%.0f s so far)\n", i, n, attempt.name().c_str(), seconds);
+    if (show) print_status(fmt::format("      construct attempt {}/{}: {} ({:.0f} s so far)", i, n, attempt.name(), seconds));
   };
 }
 

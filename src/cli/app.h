@@ -4,11 +4,14 @@
 //! output, exit codes (ARCHITECTURE §4: 0 ok, 1 usage, 2 bad input, 3 no valid result,
 //! 4 internal error).
 
+#include "core/progress.h"
 #include "core/types.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
+#include <cstdio>
 #include <functional>
 #include <memory>
 #include <utility>
@@ -71,6 +74,10 @@ void add_config_options(CLI::App& app);
 //! of --save-config, if any; the command then runs as usual.
 void save_config_if_asked(const CLI::App& app);
 
+//! A line of news on stderr (a stage starts, an attempt fails), clearing the progress bar first
+//! on a terminal.
+void print_status(const std::string& line);
+
 //! Print a summary: `json` as JSON on stdout when --json was given, else `text` (unless empty).
 void print_result(const nlohmann::json& json, const std::string& text);
 
@@ -111,6 +118,9 @@ nlohmann::json foldover_json(const optimize::FoldoverReport& check);
 //! `--hexes N ... (a positive number; default: 20000)`, where CLI11's own formatter prints
 //! `ENUM:value in {map->1,uniform->0} OR {1,0}=0`. Install on the top app before subcommands.
 std::shared_ptr<CLI::FormatterBase> help_formatter();
+
+//! The progress client used off a terminal: a line to `out` at most every `interval`.
+std::shared_ptr<core::ProgressClient> line_progress(std::FILE* out, std::chrono::milliseconds interval);
 
 //! A validator for one of `names`, in any case: turns it into the name as listed, refuses
 //! anything else with the list of names.

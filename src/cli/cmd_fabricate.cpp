@@ -72,7 +72,7 @@ void fabricate_shape(const FabricateOptions& o) {
   run.construct.on_attempt = attempt_progress();
   const bool show = !global_options().quiet && !global_options().json;
   run.on_stage = [show](int i, int n, const std::string& name) {
-    if (show) std::fprintf(stderr, "[%d/%d] %s\n", i, n, name.c_str());
+    if (show) print_status(fmt::format("[{}/{}] {}", i, n, name));
   };
   const pipeline::RunResult r = pipeline::run_pipeline(o.input, o.output, run);
   if (!r.ok()) {

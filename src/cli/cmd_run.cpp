@@ -188,7 +188,7 @@ void run_run(RunCliOptions o) {
   // so far are whole: every file is written atomically).
   auto running = std::make_shared<std::pair<std::mutex, std::string>>();
   o.run.on_stage = [show, running](int i, int n, const std::string& name) {
-    if (show) std::fprintf(stderr, "[%d/%d] %s\n", i, n, name.c_str());
+    if (show) print_status(fmt::format("[{}/{}] {}", i, n, name));
     std::lock_guard lock(running->first);
     running->second = name;
   };

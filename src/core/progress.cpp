@@ -3,6 +3,7 @@
 #include "core/errors.h"
 
 #include <algorithm>
+#include <cmath>
 #include <mutex>
 
 namespace polycube::core {
@@ -10,6 +11,7 @@ namespace polycube::core {
 namespace {
 std::mutex g_mutex;
 std::shared_ptr<ProgressClient> g_client;
+thread_local ProgressTask* t_current = nullptr;  // the innermost task running on this thread
 }  // namespace
 
 void set_progress_client(std::shared_ptr<ProgressClient> client) {
@@ -18,7 +20,26 @@ void set_progress_client(std::shared_ptr<ProgressClient> client) {
 }
 
 ProgressTask::ProgressTask(std::string name, std::int64_t total)
-    : name_(std::move(name)), total_(std::max<std::int64_t>(total, 1)) {
+    : name_(std::move(name)), total_(std::max<std::int64_t>(total, 1)), parent_(t_current) {
+  t_current = this;
+  if (parent_) {
+    root_ = parent_->root_;
+    client_ = parent_->client_;
+    // The parent's current step; a second inner task in the same step gets half of what the
+    // first left, and so on (the parent did not say how many it runs).
+    ProgressTask& p = *parent_;
+    if (p.inner_step_ != p.done_) {
+      p.inner_step_ = p.done_;
+      p.inner_runs_ = 0;
+    }
+    // Start where the bar is (an earlier inner task may have stopped early).
+    const double step_hi = p.outer_fraction(static_cast<double>(std::min(p.done_ + 1, p.total_)));
+    lo_ = std::min(std::max(p.outer_fraction(static_cast<double>(p.done_)), root_->shown_), step_hi);
+    hi_ = p.inner_runs_ == 0 ? step_hi : lo_ + 0.5 * (step_hi - lo_);
+    total_known_ = p.total_known_ && p.inner_runs_ == 0;
+    ++p.inner_runs_;
+    return;
+  }
   {
     std::lock_guard lock(g_mutex);
     client_ = g_client;
@@ -27,18 +48,30 @@ ProgressTask::ProgressTask(std::string name, std::int64_t total)
 }
 
 ProgressTask::~ProgressTask() {
-  if (client_) client_->end(name_, ok_);
+  t_current = parent_;
+  if (!parent_ && client_) client_->end(name_, ok_);
+}
+
+double ProgressTask::outer_fraction(double done) const {
+  return lo_ + (hi_ - lo_) * done / static_cast<double>(total_);
 }
 
 void ProgressTask::set(std::int64_t done) {
   done_ = std::clamp<std::int64_t>(done, 0, total_);
   if (!client_) return;
-  // Only talk to the client when the percentage changes: tasks may step millions of times.
-  const int percent = static_cast<int>(100 * done_ / total_);
-  if (percent == last_percent_) return;
-  last_percent_ = percent;
+  report(outer_fraction(static_cast<double>(done_)), total_known_);
+}
+
+void ProgressTask::report(double fraction, bool total_known) {
+  ProgressTask& r = *root_;
+  // Only talk to the client when the percentage grows: tasks may step millions of times, and
+  // an inner task that stops early leaves the bar where it was.
+  const int percent = static_cast<int>(100.0 * fraction);
+  if (percent <= r.last_percent_) return;
+  r.last_percent_ = percent;
+  r.shown_ = fraction;
   if (client_->cancel_requested()) throw Cancelled();
-  client_->progress(name_, static_cast<double>(done_) / static_cast<double>(total_));
+  client_->progress(r.name_, fraction, total_known);
 }
 
 }  // namespace polycube::core

@@ -5,6 +5,13 @@
 //! Long steps create a scoped ProgressTask and call step()/set(); the installed
 //! ProgressClient (the CLI's terminal bar, a GUI, or nothing) is told. A client may request
 //! cancellation; the next step() then throws core::Cancelled.
+//!
+//! Tasks nest: a task created (on the same thread) while another runs is a part of it and
+//! fills the outer task's current step, so a client sees one bar per outermost task (a stage
+//! of `run`), moving only forward. An inner task that runs again within the same outer step
+//! (an untangling retried, an attempt after a failed one) gets half of what is left of that
+//! step each time: the bar still moves, but the total is then unknown and clients are told so
+//! (no time estimate).
 
 #include <cstdint>
 #include <memory>
@@ -18,8 +25,9 @@ class ProgressClient {
  public:
   virtual ~ProgressClient() = default;
   virtual void begin(const std::string& task) = 0;
-  //! \param fraction done in [0, 1]
-  virtual void progress(const std::string& task, double fraction) = 0;
+  //! \param fraction    done in [0, 1], never lower than the fraction of the previous call
+  //! \param total_known false when the task does not know how much is left (no estimate)
+  virtual void progress(const std::string& task, double fraction, bool total_known) = 0;
   virtual void end(const std::string& task, bool ok) = 0;
   //! Polled by tasks; return true to cancel.
   virtual bool cancel_requested() { return false; }
@@ -31,7 +39,7 @@ void set_progress_client(std::shared_ptr<ProgressClient> client);
 //! A named long operation of a known number of steps.
 class ProgressTask {
  public:
-  //! \param name  what is being done ("tetrahedralize")
+  //! \param name  what is being done ("tetrahedralize"); an inner task's name is not shown
   //! \param total number of steps (>= 1)
   ProgressTask(std::string name, std::int64_t total);
   ~ProgressTask();
@@ -46,10 +54,24 @@ class ProgressTask {
   void finish() { ok_ = true; }
 
  private:
+  //! The outermost task's fraction at `done` steps of this one.
+  [[nodiscard]] double outer_fraction(double done) const;
+  //! Tell the client the outermost task's fraction, when its percentage grew.
+  void report(double fraction, bool total_known);
+
   std::string name_;
   std::int64_t total_;
   std::int64_t done_ = 0;
+  ProgressTask* parent_ = nullptr;  //!< the task this one is a part of (same thread)
+  ProgressTask* root_ = this;       //!< the outermost task, which talks to the client
+  double lo_ = 0.0, hi_ = 1.0;      //!< this task's range in the outermost task's fraction
+  bool total_known_ = true;         //!< false once this task or an outer one guessed its range
+  // Of the outermost task only:
   int last_percent_ = -1;
+  double shown_ = 0.0;
+  // Inner tasks run so far within the current step (each gets half of what is left).
+  std::int64_t inner_step_ = -1;
+  int inner_runs_ = 0;
   bool ok_ = false;
   std::shared_ptr<ProgressClient> client_;
 };

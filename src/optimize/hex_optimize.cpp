@@ -5,6 +5,7 @@
 #include "core/elements.h"
 #include "core/errors.h"
 #include "core/log.h"
+#include "core/progress.h"
 #include "core/topology.h"
 #include "optimize/boundary_lift.h"
 #include "optimize/centre_frames.h"
@@ -430,8 +431,9 @@ void weigh_worst_hexes(const quality::ScaledJacobianSummary& best,
 }
 
 //! The quality rounds from the best points (multipliers from 1), keeping the best state.
+//! One step of `progress` per round, when given.
 void quality_rounds(Optimization& w, const Start& start, double face_weight, Best& best,
-                    OptimizeResult& res) {
+                    OptimizeResult& res, core::ProgressTask* progress) {
   std::fill(w.multiplier.begin(), w.multiplier.end(), 1.0);
   for (int round = 0; round < w.o.quality_rounds; ++round) {
     if (round > 0) weigh_worst_hexes(best.summary, w.multiplier);
@@ -453,6 +455,7 @@ void quality_rounds(Optimization& w, const Start& start, double face_weight, Bes
       best.points = w.mesh.points;
       ++res.rounds_accepted;
     }
+    if (progress) progress->step();
   }
   w.mesh.points = best.points;
 }
@@ -530,7 +533,7 @@ void fit_retry(Optimization& w, const Start& start, double best_hausdorff, Best&
   const Best kept{best.summary, best.inverted, mesh.points};
   mesh.points = start.points;
   best = best_of(mesh);
-  quality_rounds(w, start, o.fit_retry, best, res);
+  quality_rounds(w, start, o.fit_retry, best, res, nullptr);
   const double h = w.hausdorff();
   if (best.inverted == 0 && h < best_hausdorff) {
     core::logger().info(
@@ -554,6 +557,8 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
                                  const OptimizeOptions& o) {
   const auto t0 = Clock::now();
   check_input(mesh, o);
+  // Progress: the untangling, each quality round, then the retries (when they run).
+  core::ProgressTask progress("optimize", 2 + o.quality_rounds);
 
   OptimizeResult res;
   res.before = summary(mesh, false);
@@ -586,6 +591,7 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   const auto t1 = Clock::now();
   untangle_phase(w, res.untangle);
   res.untangle.seconds = seconds_since(t1);
+  progress.step();
 
   // Phase 2: quality rounds, keeping the best state.
   const auto t2 = Clock::now();
@@ -594,7 +600,7 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   // (the untangled state's average is not a quality the user asked to keep).
   const Start start{mesh.points, best.inverted,
                     best.summary.average - (res.untangle.iterations > 0 ? o.average_slack : 0.0)};
-  quality_rounds(w, start, o.face_attraction, best, res);
+  quality_rounds(w, start, o.face_attraction, best, res, &progress);
   // Finally put the boundary exactly on the target where that keeps every hex at or above the
   // minimum reached (and inverts nothing); not when the boundary fits the surface by its quad
   // centres too (the vertices are then meant to be off it by a fraction of the chord).
@@ -608,6 +614,8 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   res.inverted_after = inverted_jacobians(mesh);
   res.untangled = res.inverted_after == 0;
   res.seconds = seconds_since(t0);
+  progress.step();
+  progress.finish();
   return res;
 }
 

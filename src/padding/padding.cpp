@@ -1,5 +1,6 @@
 #include "padding/padding.h"
 
+#include "core/progress.h"
 #include "core/stopwatch.h"
 #include "core/topology.h"
 #include "quality/singularities.h"
@@ -33,9 +34,11 @@ MeshFigures mesh_figures(const core::HexMesh& mesh) {
 PadResult pad_hex_mesh(const core::HexMesh& mesh, const core::TriMesh& target, const std::vector<std::uint8_t>& selected,
                        const PadOptions& options) {
   const core::Stopwatch clock;
+  core::ProgressTask progress("pad", 2);  // the sheet, then its optimization
   PadResult r;
   r.before = mesh_figures(mesh);
   SheetResult sheet = insert_sheet(mesh, selected, options.sheet);
+  progress.step();
   r.mesh = std::move(sheet.mesh);
   r.padding_layer = std::move(sheet.padding_layer);
   r.source_hex = std::move(sheet.source_hex);
@@ -48,6 +51,8 @@ PadResult pad_hex_mesh(const core::HexMesh& mesh, const core::TriMesh& target, c
   r.distance = quality::hausdorff_distance(r.mesh, target);
   r.after = mesh_figures(r.mesh);
   r.seconds = clock.seconds();
+  progress.step();
+  progress.finish();
   return r;
 }
 

@@ -4,6 +4,7 @@
 #include "core/stopwatch.h"
 #include "core/errors.h"
 #include "core/log.h"
+#include "core/progress.h"
 #include "core/topology.h"
 #include "io/mesh_io.h"
 #include "pipeline/parts_output.h"
@@ -75,8 +76,12 @@ class Runner {
     StageRecord rec{name, 0.0, false};
     const core::Stopwatch clock;
     try {
+      // One progress bar per stage: the stage's own long steps fill it (core/progress.h).
+      core::ProgressTask progress(name, 1);
       if (o_.inject_failure == name) throw core::GeometryError("injected failure (--inject-failure " + name + ")");
       body();
+      progress.step();
+      progress.finish();
       rec.ok = true;
     } catch (const core::OutputError& e) {
       fail(name, e.what(), true);  // a file that cannot be written is the user's to fix, in any stage
@@ -168,9 +173,15 @@ std::optional<padding::PadResult> pad_and_record(const core::HexMesh& hex, const
                                                  const RunOptions& o, padding::PaddingMode mode, const std::string& how,
                                                  const std::filesystem::path& out_dir, RunResult& r,
                                                  const std::function<void(const std::filesystem::path&)>& wrote) {
+  // Two steps for the progress bar: which facets (the selective plan solves a MILP), then the
+  // sheet and its optimization.
+  core::ProgressTask progress("pad", 2);
   const std::vector<std::uint8_t> facets = padding_facets(hex, mode, o, r);
+  progress.step();
   if (facets.empty()) return std::nullopt;
   padding::PadResult p = padding::pad_hex_mesh(hex, in.target, facets, o.padding_options);
+  progress.step();
+  progress.finish();
   r.padding = how;
   r.padding_added = p.added_hexes;
   r.singular_vertices_before = p.before.singular_vertices;

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <regex>
 #include <string>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -73,6 +74,13 @@ TEST(CliReadme, FirstScreenSaysWhatAndHow) {
   for (std::size_t i = 0; i < lines.size() && i < 40; ++i) first_screen += lines[i] + "\n";
   EXPECT_NE(first_screen.find("make demo"), std::string::npos) << first_screen;
   EXPECT_NE(first_screen.find("polycube run"), std::string::npos) << first_screen;
+  // and show one picture of a result, a PNG committed with the project
+  std::smatch picture;
+  ASSERT_TRUE(std::regex_search(first_screen, picture, std::regex(R"(!\[[^\]]+\]\(([^)]+\.png)\))"))) << first_screen;
+  std::ifstream png(source_dir() / picture[1].str(), std::ios::binary);
+  std::string magic(8, '\0');
+  ASSERT_TRUE(png.read(magic.data(), 8)) << picture[1];
+  EXPECT_EQ(magic, std::string("\x89PNG\r\n\x1a\n", 8));
 }
 
 TEST(CliReadme, QuickStartRunsAsWritten) {

@@ -1,0 +1,133 @@
+// Progress: nested tasks make one bar per outermost task, which only moves forward.
+#include "core/errors.h"
+#include "core/progress.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace polycube {
+namespace {
+
+//! Records what a client is told.
+struct Recorder : core::ProgressClient {
+  std::vector<std::string> begun, ended;
+  std::vector<std::string> task;
+  std::vector<double> fraction;
+  std::vector<bool> known;
+  bool cancel = false;
+  void begin(const std::string& t) override { begun.push_back(t); }
+  void progress(const std::string& t, double f, bool k) override {
+    task.push_back(t);
+    fraction.push_back(f);
+    known.push_back(k);
+  }
+  void end(const std::string& t, bool) override { ended.push_back(t); }
+  bool cancel_requested() override { return cancel; }
+};
+
+//! Installs a recorder for the test's duration.
+struct Installed {
+  std::shared_ptr<Recorder> r = std::make_shared<Recorder>();
+  Installed() { core::set_progress_client(r); }
+  ~Installed() { core::set_progress_client(nullptr); }
+};
+
+void run_inner(const char* name, int total, int stop_at) {
+  core::ProgressTask inner(name, total);
+  for (int i = 1; i <= stop_at; ++i) inner.set(i);
+  inner.finish();
+}
+
+//! Whether the client was told this fraction (to rounding).
+bool told(const std::vector<double>& v, double x) {
+  return std::any_of(v.begin(), v.end(), [x](double f) { return std::abs(f - x) < 1e-12; });
+}
+
+bool non_decreasing(const std::vector<double>& v) {
+  for (std::size_t i = 1; i < v.size(); ++i)
+    if (v[i] < v[i - 1]) return false;
+  return true;
+}
+
+TEST(Progress, InnerTasksFillTheOuterTasksStepsOnOneBar) {
+  Installed c;
+  {
+    core::ProgressTask stage("optimize", 4);
+    run_inner("untangle", 10, 10);  // step 0: all of it, to 25 %
+    stage.step();
+    run_inner("untangle", 10, 3);   // step 1: stops early at 30 % of its step
+    stage.step();
+    stage.step();                   // step 2: nothing inside
+    run_inner("untangle", 100, 100);
+    stage.step();
+    stage.finish();
+  }
+  const Recorder& r = *c.r;
+  EXPECT_EQ(r.begun, std::vector<std::string>{"optimize"});
+  EXPECT_EQ(r.ended, std::vector<std::string>{"optimize"});
+  for (const std::string& t : r.task) EXPECT_EQ(t, "optimize");
+  EXPECT_TRUE(non_decreasing(r.fraction));
+  ASSERT_FALSE(r.fraction.empty());
+  EXPECT_DOUBLE_EQ(r.fraction.back(), 1.0);
+  // The first inner task ends exactly at its step's end, the second within its step.
+  EXPECT_TRUE(told(r.fraction, 0.25));
+  EXPECT_TRUE(told(r.fraction, 0.25 + 0.25 * 0.3));
+  for (bool k : r.known) EXPECT_TRUE(k);
+}
+
+TEST(Progress, InnerTasksRunAgainInOneStepKeepMovingWithoutAnEstimate) {
+  Installed c;
+  {
+    core::ProgressTask stage("construct", 1);
+    run_inner("untangle", 10, 4);  // 0 .. 40 %
+    run_inner("untangle", 10, 10);  // half of what is left: 40 .. 70 %
+    run_inner("untangle", 10, 10);  // 70 .. 85 %
+    stage.step();
+    stage.finish();
+  }
+  const Recorder& r = *c.r;
+  EXPECT_EQ(r.begun.size(), 1u);
+  EXPECT_TRUE(non_decreasing(r.fraction));
+  EXPECT_TRUE(told(r.fraction, 0.7));
+  EXPECT_TRUE(told(r.fraction, 0.85));
+  EXPECT_DOUBLE_EQ(r.fraction.back(), 1.0);
+  EXPECT_TRUE(r.known.front());  // the first inner task had the whole step
+  EXPECT_FALSE(r.known[r.known.size() - 2]);  // the third did not know its share
+}
+
+TEST(Progress, AFailedTaskEndsItsBarAndTheNextTaskIsItsOwn) {
+  Installed c;
+  try {
+    core::ProgressTask stage("simplify", 2);
+    run_inner("untangle", 4, 2);
+    throw core::GeometryError("failed");
+  } catch (const core::GeometryError&) {
+  }
+  {
+    core::ProgressTask next("hexmesh", 1);
+    next.step();
+    next.finish();
+  }
+  const Recorder& r = *c.r;
+  EXPECT_EQ(r.begun, (std::vector<std::string>{"simplify", "hexmesh"}));
+  EXPECT_EQ(r.ended, (std::vector<std::string>{"simplify", "hexmesh"}));
+  EXPECT_EQ(r.task.back(), "hexmesh");
+  EXPECT_DOUBLE_EQ(r.fraction.back(), 1.0);
+}
+
+TEST(Progress, AnInnerTaskCanBeCancelled) {
+  Installed c;
+  core::ProgressTask stage("optimize", 2);
+  core::ProgressTask inner("untangle", 10);
+  inner.set(1);
+  c.r->cancel = true;
+  EXPECT_THROW(inner.set(2), core::Cancelled);
+}
+
+}  // namespace
+}  // namespace polycube
