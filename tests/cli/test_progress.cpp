@@ -82,6 +82,13 @@ TEST(CliProgress, OnATerminalEachStageHasOneBarThatOnlyMovesForward) {
   EXPECT_GE(estimates, 1);
   // No other bar than the stages' (inner steps such as the untangling fill their stage's bar).
   EXPECT_EQ(bars.size(), 7u);
+
+  // -q: no bar and no line at all, on a terminal too.
+  const std::string quiet = "script -qefc \"" + std::string(POLYCUBE_CLI) + " -q run '" + (dir / "lb.obj").string() +
+                            "' -o '" + (dir / "quiet").string() + "' --hexes 500 --no-simplify >/dev/null\" /dev/null > '" +
+                            (dir / "quiet.txt").string() + "' 2>&1 </dev/null";
+  ASSERT_EQ(std::system(quiet.c_str()), 0);
+  EXPECT_EQ(read_all(dir / "quiet.txt"), "");
   fs::remove_all(dir);
 }
 
