@@ -7,6 +7,7 @@
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -49,6 +50,31 @@ ExactMesh to_exact(const core::TriMesh& m) {
 
 Vec3 rounded(const EK::Point_3& p) {
   return {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+}
+
+//! Collapse the edges whose two ends round to the same point. An exact cut makes a new vertex
+//! wherever a plane crosses an edge, however close to an existing vertex (a plane through a
+//! vertex of the input, snapped onto it, and an edge beside it): the two are distinct exactly
+//! and one double apart or less, so rounding merges them, folding the triangles between them
+//! into slivers that cross their neighbours. Collapsing those edges first (where the link
+//! condition keeps the surface a manifold) moves the surface by less than a rounding step.
+//! Returns the number of edges collapsed.
+int collapse_subrounding_edges(ExactMesh& m) {
+  int collapsed = 0;
+  for (bool again = true; again;) {
+    again = false;
+    for (auto e : m.edges()) {
+      if (m.is_removed(e)) continue;
+      const auto h = m.halfedge(e);
+      if (rounded(m.point(m.source(h))) != rounded(m.point(m.target(h)))) continue;
+      if (!CGAL::Euler::does_satisfy_link_condition(e, m)) continue;
+      CGAL::Euler::collapse_edge(e, m);
+      ++collapsed;
+      again = true;
+    }
+  }
+  if (collapsed > 0) m.collect_garbage();
+  return collapsed;
 }
 
 core::TriMesh to_double(const ExactMesh& m) {
@@ -240,7 +266,8 @@ int return_strays(std::vector<std::pair<int, ExactMesh>>& pieces, const BoxOf& b
   return moved;
 }
 
-Part finish(int box, const ExactMesh& piece) {
+Part finish(int box, ExactMesh piece) {
+  collapse_subrounding_edges(piece);
   Part p;
   p.box = box;
   p.mesh = to_double(piece);
