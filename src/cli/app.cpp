@@ -453,6 +453,40 @@ CLI::Validator number_check(std::function<bool(double)> ok, const std::string& w
 
 }  // namespace
 
+std::vector<CLI::Option*> add_repair_options(CLI::App& sub, repair::RepairOptions& o) {
+  sub.add_option_function<std::vector<std::string>>(
+         "--repair",
+         [&o](const std::vector<std::string>& kinds) {
+           for (const std::string& k : kinds) {
+             o.fill_holes = o.fill_holes || k == "holes";
+             o.wrap = o.wrap || k == "wrap";
+           }
+         },
+         "Repairs that change the surface, on request: holes (close holes up to --max-hole edges with refined, "
+         "faired patches), wrap (replace the surface by its alpha wrap: watertight, manifold, without "
+         "self-intersections, within --wrap-offset of the input; for soups, self-intersections, touching or "
+         "overlapping solids). The repairs that never move the surface are always on")
+      ->delimiter(',')
+      ->transform(one_of({"holes", "wrap"}))
+      ->type_name("holes|wrap");
+  sub.add_flag("--largest-component", o.largest_component,
+               "Keep only the component of largest area (drops loose parts and debris)");
+  return {
+      sub.add_option("--max-hole", o.max_hole_edges, "--repair holes: the largest hole closed, in boundary edges")
+          ->check(positive())
+          ->capture_default_str(),
+      sub.add_option("--wrap-alpha", o.wrap_alpha,
+                     "--repair wrap: the wrapping ball's radius, a fraction of the bounding-box diagonal (smaller: "
+                     "finer details, more triangles)")
+          ->check(in_range(1e-4, 1.0))
+          ->capture_default_str(),
+      sub.add_option("--wrap-offset", o.wrap_offset,
+                     "--repair wrap: the wrap's distance from the input, a fraction of the bounding-box diagonal")
+          ->check(in_range(1e-5, 0.1))
+          ->capture_default_str(),
+  };
+}
+
 CLI::Validator positive() {
   return number_check([](double v) { return v > 0.0; }, "a positive number", "POSITIVE");
 }

@@ -6,6 +6,7 @@
 
 #include "core/progress.h"
 #include "core/types.h"
+#include "repair/repair.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -157,6 +158,12 @@ CLI::Option* add_chamber_option(CLI::App& sub, std::vector<double>& chamber);
 //! Hide `expert` from the subcommand's --help and add `--help-expert`, which lists them too.
 void add_expert_options(CLI::App& sub, const std::vector<CLI::Option*>& expert);
 
+//! The repairs that change the geometry (repair/repair.h), for the commands that read a
+//! surface: `--repair holes|wrap` (repeatable or comma-separated), `--largest-component`, and
+//! their settings (`--max-hole`, `--wrap-alpha`, `--wrap-offset`). Returns the options of the
+//! settings, for add_expert_options.
+std::vector<CLI::Option*> add_repair_options(CLI::App& sub, repair::RepairOptions& o);
+
 //! Run the parsed application, mapping exceptions to exit codes and one-line messages (and,
 //! with --json, a JSON object `{"status": "failed", "exit_code", "error"}` on stdout unless the
 //! command already printed its own).
@@ -194,5 +201,6 @@ void register_pad(CLI::App& app);
 void register_run(CLI::App& app);
 void register_fabricate(CLI::App& app);
 void register_check_fab(CLI::App& app);
+void register_repair(CLI::App& app);
 
 }  // namespace polycube::cli

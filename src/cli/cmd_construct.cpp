@@ -27,11 +27,12 @@ struct ConstructCliOptions {
   std::string output_dir;
   std::string keep_failed;  // folder for the best uncertified attempt, for diagnosis
   std::string inject_failure;  // testing only: "certify" = report the result as not certified; "attempt-N"
+  repair::RepairOptions repair;
   construct::ConstructOptions construct;
 };
 
 construct::ConstructResult run_from_file(const ConstructCliOptions& o) {
-  const pipeline::ConstructInput in = pipeline::read_construct_input(o.input);
+  const pipeline::ConstructInput in = pipeline::read_construct_input(o.input, o.repair);
   return pipeline::construct_from_input(in, o.input, o.construct);
 }
 
@@ -182,7 +183,8 @@ void register_construct(CLI::App& app) {
   sub->add_option("--keep-failed", opts->keep_failed,
                   "When certification fails, write the best attempt to this folder as uncertified_model.mesh and "
                   "uncertified_polycube.mesh (boundary labels as triangle references), for diagnosis");
-  add_expert_options(*sub, {
+  const std::vector<CLI::Option*> repair_expert = add_repair_options(*sub, opts->repair);
+  std::vector<CLI::Option*> expert = {
       sub->add_option("--predeform-retry", c.predeform_retry,
                       "When --predeform is 0, also plan the attempts on the model pre-deformed by this many "
                       "iterations, with estimate-driven unfolding (0: never); the attempts run most promising first")
@@ -239,7 +241,9 @@ void register_construct(CLI::App& app) {
                       "polycube estimate (0: none)")
           ->capture_default_str()
           ->check(cli::non_negative()),
-  });
+  };
+  expert.insert(expert.end(), repair_expert.begin(), repair_expert.end());
+  add_expert_options(*sub, expert);
   // Fault injection for the tests of --keep-failed and of the fallback attempts: hidden from --help.
   sub->add_option("--inject-failure", opts->inject_failure,
                   "Testing only: 'certify' treats the result as not certified, 'attempt-N' the first N attempts as "

@@ -17,6 +17,7 @@ namespace {
 
 struct InfoOptions {
   std::string input;
+  repair::RepairOptions repair;
 };
 
 nlohmann::json surface_json(const core::SurfaceReport& r) {
@@ -116,13 +117,16 @@ void run_info(const InfoOptions& o) {
     if (!d.triangles.empty()) {
       // The surface as construct and run see it: after the repairs that never move it.
       core::TriMesh surface = core::triangles_of(d);
-      const repair::RepairReport repaired = repair::repair_surface(surface);
-      j["repairs"] = repaired.lines();
-      if (repaired.changed()) {
+      const repair::RepairReport repaired = repair::repair_surface(surface, o.repair);
+      std::vector<std::string> repairs = repaired.lines();
+      const repair::RefineReport refined = repair::refine_if_coarse(surface);
+      if (refined.refined) repairs.push_back(refined.line());
+      j["repairs"] = repairs;
+      if (!repairs.empty()) {
         text +=
             "repairs (run, construct and fabricate apply them on load; the figures below are after "
             "them):\n";
-        for (const std::string& line : repaired.lines()) text += "  " + line + "\n";
+        for (const std::string& line : repairs) text += "  " + line + "\n";
       }
       const core::SurfaceReport r = core::analyze_surface(surface);
       j["surface"] = surface_json(r);
@@ -148,6 +152,7 @@ void register_info(CLI::App& app) {
                                      "genus and components of a mesh file");
   sub->add_option("file", opts->input, "Mesh file (.obj .off .stl .ply .mesh .vtk .msh)")
       ->required();
+  add_expert_options(*sub, add_repair_options(*sub, opts->repair));
   sub->callback([opts] { run_info(*opts); });
 }
 

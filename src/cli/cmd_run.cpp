@@ -282,6 +282,7 @@ void register_run(CLI::App& app) {
                              "optimize-step-3", "optimize-step-4", "pad"}))
       ->group("");
   opts->command = sub;
+  add_expert_options(*sub, add_repair_options(*sub, opts->run.repair));
   sub->callback([opts] { run_run(*opts); });
 }
 

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
 
   register_info(app);
   register_convert(app);
+  register_repair(app);
   register_sample(app);
   register_label(app);
   register_construct(app);

@@ -281,18 +281,18 @@ void check_closed_surface(const core::TriMesh& surface) {
     throw core::InputError(fmt::format(
         "the surface is not manifold: {} edge(s) shared by three or more triangles, the first at "
         "{}; "
-        "separate the solids that touch there or give one closed solid",
+        "separate the solids that touch there or give one closed solid (--repair wrap joins them)",
         report.nonmanifold_edges, where(first_edge_used(surface, [](int n) { return n > 2; }))));
   if (report.boundary_edges > 0)
     throw core::InputError(fmt::format(
         "the surface is open: {} boundary edge(s) in {} hole(s), the first at {}; close the holes "
-        "(MeshLab: Close Holes) or give a closed surface",
+        "(--repair holes, or --repair wrap for many small gaps) or give a closed surface",
         report.boundary_edges, report.boundary_loops,
         where(first_edge_used(surface, [](int n) { return n == 1; }))));
   if (report.nonmanifold_vertices > 0)
     throw core::InputError(fmt::format(
         "the surface is not manifold: {} vertex(es) where separate sheets touch, the first at {}; "
-        "move the sheets apart there or join them into one solid",
+        "move the sheets apart there or join them into one solid (--repair wrap)",
         report.nonmanifold_vertices, where(first_pinched_vertex(surface))));
   if (!report.orientable) throw core::InputError("the surface is not orientable");
 
@@ -318,8 +318,8 @@ void check_closed_surface(const core::TriMesh& surface) {
     const Vec3 at = (oriented.points[t[0]] + oriented.points[t[1]] + oriented.points[t[2]]) / 3.0;
     throw core::InputError(fmt::format(
         "the surface self-intersects: {} pair(s) of intersecting triangles (first: {} and {}, near "
-        "{}); separate the parts that cross there, or join overlapping solids into one (a boolean "
-        "union, e.g. MeshLab, or an alpha wrap)",
+        "{}); separate the parts that cross there, or join them into one solid (--repair wrap; or a "
+        "boolean union)",
         pairs.size(), std::min(f0, f1), std::max(f0, f1), where(at)));
   }
 }

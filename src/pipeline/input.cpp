@@ -10,7 +10,7 @@
 
 namespace polycube::pipeline {
 
-ConstructInput read_construct_input(const std::filesystem::path& path) {
+ConstructInput read_construct_input(const std::filesystem::path& path, const repair::RepairOptions& repairs) {
   const std::string name = path.string();
   const io::Format format = io::format_from_path(name);
   ConstructInput in;
@@ -39,8 +39,10 @@ ConstructInput read_construct_input(const std::filesystem::path& path) {
     } else {
       in.surface = io::read_surface(name);
     }
-    const repair::RepairReport repaired = repair::repair_surface(*in.surface);
+    const repair::RepairReport repaired = repair::repair_surface(*in.surface, repairs);
     in.repairs = repaired.lines();
+    const repair::RefineReport refined = repair::refine_if_coarse(*in.surface);
+    if (refined.refined) in.repairs.push_back(refined.line());
     for (const std::string& line : in.repairs) core::logger().warn("{}: {}", name, line);
     construct::check_closed_surface(*in.surface);
   } catch (const core::InputError& e) {

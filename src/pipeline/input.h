@@ -5,6 +5,7 @@
 
 #include "construct/construct.h"
 #include "core/types.h"
+#include "repair/repair.h"
 
 #include <filesystem>
 #include <optional>
@@ -24,10 +25,10 @@ struct ConstructInput {
 };
 
 //! Read a construction input and check what can be checked before heavy work: a surface gets
-//! the repairs that never move it (each logged as a warning), then must be closed and manifold;
-//! a hex mesh is refused.
+//! the repairs that never move it and those `repairs` asks for (each logged as a warning), then
+//! must be closed and manifold; a hex mesh is refused.
 //! \throw core::InputError naming the file
-ConstructInput read_construct_input(const std::filesystem::path& path);
+ConstructInput read_construct_input(const std::filesystem::path& path, const repair::RepairOptions& repairs = {});
 
 //! Run the construction on a read input. InputErrors are re-thrown naming the file.
 construct::ConstructResult construct_from_input(const ConstructInput& input,

@@ -308,7 +308,7 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   // 1. input checks (cheap: a surface that is open or non-manifold stops here, exit 2)
   ConstructInput in;
   run.stage("input", [&] {
-    in = read_construct_input(input);
+    in = read_construct_input(input, o.repair);
     r.repairs = in.repairs;
   });
 

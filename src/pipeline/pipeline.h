@@ -29,6 +29,7 @@
 #include "mesh/grid.h"
 #include "optimize/hex_optimize.h"
 #include "padding/padding.h"
+#include "repair/repair.h"
 #include "simplify/simplify.h"
 
 #include <filesystem>
@@ -40,6 +41,7 @@ namespace polycube::pipeline {
 
 //! Options of run_pipeline().
 struct RunOptions {
+  repair::RepairOptions repair;  //!< the repairs asked for beyond the default ones (repair/repair.h)
   construct::ConstructOptions construct;
   bool simplify = true;                    //!< run the simplification (corner alignment)
   simplify::SimplifyOptions simplify_options;

@@ -1,10 +1,17 @@
-//! Repairs that never move a surface (see repair.h).
+//! The repairs of an input surface (see repair.h).
 #include "repair/repair.h"
 
+#include "core/disjoint_sets.h"
+#include "core/topology.h"
+#include "repair/geometry_repairs.h"
+
 #include <fmt/format.h>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <map>
 #include <numeric>
 #include <set>
 
@@ -46,24 +53,9 @@ core::Tri canonical(const core::Tri& t) {
           t[static_cast<std::size_t>((k + 2) % 3)]};
 }
 
-}  // namespace
-
-std::vector<std::string> RepairReport::lines() const {
-  std::vector<std::string> out;
-  if (merged_vertices > 0)
-    out.push_back(
-        fmt::format("merged {} vertices at the same coordinates as another", merged_vertices));
-  if (degenerate_triangles > 0)
-    out.push_back(fmt::format("dropped {} triangles using a vertex twice", degenerate_triangles));
-  if (duplicate_triangles > 0)
-    out.push_back(fmt::format("dropped {} triangles repeating another", duplicate_triangles));
-  if (unused_vertices > 0)
-    out.push_back(fmt::format("dropped {} vertices of no triangle", unused_vertices));
-  return out;
-}
-
-RepairReport repair_surface(core::TriMesh& mesh) {
-  RepairReport report;
+//! Steps 1-4 of repair.h: weld exactly equal vertices, drop degenerate and repeated triangles
+//! and unused vertices.
+void weld(core::TriMesh& mesh, RepairReport& report) {
   const std::vector<int> to = first_at_same_point(mesh.points, report.merged_vertices);
   const bool labelled = mesh.labels.size() == mesh.cells.size();
   std::vector<core::Tri> cells;
@@ -93,15 +85,165 @@ RepairReport repair_surface(core::TriMesh& mesh) {
     index[v] = static_cast<int>(points.size());
     points.push_back(mesh.points[v]);
   }
-  report.unused_vertices =
-      static_cast<int>(mesh.points.size() - points.size()) - report.merged_vertices;
-  if (!report.changed()) return report;
+  report.unused_vertices = static_cast<int>(mesh.points.size() - points.size()) - report.merged_vertices;
+  if (!report.changed()) return;
   for (core::Tri& c : cells)
     for (int& v : c) v = index[static_cast<std::size_t>(v)];
   mesh.points = std::move(points);
   mesh.cells = std::move(cells);
   if (labelled) mesh.labels = std::move(labels);
+}
+
+//! Step 5: a vertex whose triangles form several fans (sheets touching at it) gets a copy per
+//! fan after the first (fans in the order of their lowest triangle), at the same place.
+int split_pinched_vertices(core::TriMesh& mesh) {
+  const std::size_t nv = mesh.points.size();
+  std::vector<std::vector<int>> around(nv);
+  for (std::size_t t = 0; t < mesh.cells.size(); ++t)
+    for (const int v : mesh.cells[t]) around[static_cast<std::size_t>(v)].push_back(static_cast<int>(t));
+  int split = 0;
+  for (std::size_t v = 0; v < nv; ++v) {
+    const std::vector<int>& tris = around[v];
+    if (tris.size() < 2) continue;
+    // Two triangles around v are in one fan when they share an edge at v (a second vertex).
+    core::DisjointSets fans(tris.size());
+    std::map<int, int> first_with;  // other vertex -> first triangle (index in tris) using it
+    for (std::size_t i = 0; i < tris.size(); ++i)
+      for (const int w : mesh.cells[static_cast<std::size_t>(tris[i])]) {
+        if (w == static_cast<int>(v)) continue;
+        const auto [it, fresh] = first_with.emplace(w, static_cast<int>(i));
+        if (!fresh) fans.unite(it->second, static_cast<int>(i));
+      }
+    std::map<int, int> copy_of_fan;  // fan root -> vertex number (the first fan keeps v)
+    for (std::size_t i = 0; i < tris.size(); ++i) {
+      const int root = fans.find(static_cast<int>(i));
+      auto it = copy_of_fan.find(root);
+      if (it == copy_of_fan.end()) {
+        const int id = copy_of_fan.empty() ? static_cast<int>(v) : static_cast<int>(mesh.points.size());
+        if (id != static_cast<int>(v)) {
+          mesh.points.push_back(mesh.points[v]);
+          ++split;
+        }
+        it = copy_of_fan.emplace(root, id).first;
+      }
+      for (int& w : mesh.cells[static_cast<std::size_t>(tris[i])])
+        if (w == static_cast<int>(v)) w = it->second;
+    }
+  }
+  return split;
+}
+
+//! Keep the component (through shared vertices) of largest area.
+void keep_largest_component(core::TriMesh& mesh, RepairReport& report) {
+  core::DisjointSets sets(mesh.points.size());
+  for (const core::Tri& t : mesh.cells) {
+    sets.unite(t[0], t[1]);
+    sets.unite(t[0], t[2]);
+  }
+  std::map<int, double> area;
+  for (const core::Tri& t : mesh.cells) {
+    const core::Vec3 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]];
+    area[sets.find(t[0])] += 0.5 * (b - a).cross(c - a).norm();
+  }
+  if (area.size() < 2) return;
+  const int keep = std::max_element(area.begin(), area.end(), [](const auto& x, const auto& y) {
+                     return x.second < y.second;
+                   })->first;
+  const bool labelled = mesh.labels.size() == mesh.cells.size();
+  std::vector<core::Tri> cells;
+  std::vector<int> labels;
+  for (std::size_t t = 0; t < mesh.cells.size(); ++t) {
+    if (sets.find(mesh.cells[t][0]) != keep) {
+      ++report.dropped_triangles;
+      continue;
+    }
+    cells.push_back(mesh.cells[t]);
+    if (labelled) labels.push_back(mesh.labels[t]);
+  }
+  report.dropped_components = static_cast<int>(area.size()) - 1;
+  mesh.cells = std::move(cells);
+  if (labelled) mesh.labels = std::move(labels);
+  core::remove_unreferenced_points(mesh);
+}
+
+}  // namespace
+
+std::vector<std::string> RepairReport::lines() const {
+  std::vector<std::string> out;
+  if (merged_vertices > 0)
+    out.push_back(
+        fmt::format("merged {} vertices at the same coordinates as another", merged_vertices));
+  if (degenerate_triangles > 0)
+    out.push_back(fmt::format("dropped {} triangles using a vertex twice", degenerate_triangles));
+  if (duplicate_triangles > 0)
+    out.push_back(fmt::format("dropped {} triangles repeating another", duplicate_triangles));
+  if (unused_vertices > 0)
+    out.push_back(fmt::format("dropped {} vertices of no triangle", unused_vertices));
+  if (dropped_components > 0)
+    out.push_back(fmt::format("kept the largest component: dropped {} other component(s), {} triangles",
+                              dropped_components, dropped_triangles));
+  if (split_vertices > 0)
+    out.push_back(fmt::format("split {} vertices where separate sheets touched (one copy per sheet)", split_vertices));
+  if (filled_holes > 0)
+    out.push_back(fmt::format("filled {} hole(s) with {} triangles", filled_holes, hole_triangles));
+  if (open_holes > 0)
+    out.push_back(fmt::format("left {} hole(s) open: larger than --max-hole", open_holes));
+  if (turned_triangles > 0)
+    out.push_back(fmt::format("turned {} triangles to face consistently and outward", turned_triangles));
+  if (wrapped)
+    out.push_back(fmt::format("replaced the surface by its alpha wrap ({} triangles; alpha {:.4g}, offset {:.4g})",
+                              wrap_triangles, wrap_alpha, wrap_offset));
+  return out;
+}
+
+RepairReport repair_surface(core::TriMesh& mesh, const RepairOptions& options) {
+  RepairReport report;
+  weld(mesh, report);
+  if (options.wrap) {
+    // The wrap replaces the surface: nothing else is needed, and it works on soups.
+    const double diagonal = core::bounding_box(mesh.points).extent().norm();
+    detail::alpha_wrap(mesh, options.wrap_alpha * diagonal, options.wrap_offset * diagonal, report);
+    mesh.labels.clear();
+    return report;
+  }
+  if (options.largest_component) keep_largest_component(mesh, report);
+  report.split_vertices = split_pinched_vertices(mesh);
+  if (options.fill_holes) {
+    detail::fill_holes(mesh, options.max_hole_edges, report);
+    if (report.filled_holes > 0) mesh.labels.clear();
+  }
+  report.turned_triangles = detail::orient_to_bound_volume(mesh);
   return report;
+}
+
+std::string RefineReport::line() const {
+  if (!refined) return {};
+  return fmt::format(
+      "refined a coarse surface (longest edge {:.0f} % of the diagonal): {} -> {} triangles, by isotropic "
+      "remeshing with its sharp edges kept",
+      100.0 * longest_edge, triangles_before, triangles_after);
+}
+
+RefineReport refine_if_coarse(core::TriMesh& mesh) {
+  RefineReport r;
+  const double diagonal = core::bounding_box(mesh.points).extent().norm();
+  if (!(diagonal > 0)) return r;
+  r.triangles_before = static_cast<int>(mesh.cells.size());
+  // A large triangle facing away from every axis is one the labeling has to split between
+  // charts, which it can only do along edges.
+  const double axis_cos = std::cos(30.0 * 3.14159265358979323846 / 180.0);
+  bool coarse = false;
+  for (const core::Tri& t : mesh.cells) {
+    const core::Vec3 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]];
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()}) / diagonal;
+    r.longest_edge = std::max(r.longest_edge, longest);
+    const core::Vec3 n = (b - a).cross(c - a);
+    if (longest > 0.1 && n.norm() > 0 && n.cwiseAbs().maxCoeff() < axis_cos * n.norm()) coarse = true;
+  }
+  if (coarse) r.refined = detail::refine_coarse(mesh, diagonal / 40.0);
+  if (r.refined) mesh.labels.clear();
+  r.triangles_after = static_cast<int>(mesh.cells.size());
+  return r;
 }
 
 }  // namespace polycube::repair

@@ -1,0 +1,160 @@
+//! The repairs built on CGAL (see geometry_repairs.h).
+#include "repair/geometry_repairs.h"
+
+#include "core/topology.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/detect_features.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/alpha_wrap_3.h>
+
+#include <algorithm>
+#include <array>
+#include <iterator>
+#include <optional>
+#include <vector>
+
+namespace polycube::repair::detail {
+
+namespace {
+
+namespace PMP = CGAL::Polygon_mesh_processing;
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
+
+//! The mesh as a CGAL surface mesh, vertex and face numbers kept; nullopt when a triangle
+//! cannot be attached (not manifold, or not consistently oriented).
+std::optional<SurfaceMesh> to_surface_mesh(const core::TriMesh& m) {
+  SurfaceMesh sm;
+  std::vector<SurfaceMesh::Vertex_index> v;
+  v.reserve(m.points.size());
+  for (const core::Vec3& p : m.points) v.push_back(sm.add_vertex({p.x(), p.y(), p.z()}));
+  for (const core::Tri& t : m.cells)
+    if (sm.add_face(v[t[0]], v[t[1]], v[t[2]]) == SurfaceMesh::null_face()) return std::nullopt;
+  return sm;
+}
+
+core::TriMesh to_tri_mesh(const SurfaceMesh& sm) {
+  core::TriMesh m;
+  std::vector<int> id(sm.number_of_vertices() + sm.number_of_removed_vertices(), -1);
+  for (auto v : sm.vertices()) {
+    id[v.idx()] = static_cast<int>(m.points.size());
+    const auto& p = sm.point(v);
+    m.points.emplace_back(p.x(), p.y(), p.z());
+  }
+  for (auto f : sm.faces()) {
+    core::Tri t{};
+    int k = 0;
+    for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) t[static_cast<std::size_t>(k++)] = id[v.idx()];
+    m.cells.push_back(t);
+  }
+  return m;
+}
+
+//! Whether every closed component encloses a positive volume and there is one component: then
+//! the surface bounds its volume as it is (the common case, decided without CGAL).
+bool one_outward_shell(const core::TriMesh& m, const core::SurfaceReport& r) {
+  return r.components == 1 && r.closed && core::signed_volume(m) > 0;
+}
+
+}  // namespace
+
+int orient_to_bound_volume(core::TriMesh& mesh) {
+  const core::SurfaceReport r = core::analyze_surface(mesh);
+  if (!r.manifold || !r.orientable) return 0;  // the check after the repairs says why
+  if (r.consistently_oriented && (!r.closed || one_outward_shell(mesh, r))) return 0;
+  const std::vector<core::Tri> before = mesh.cells;
+  if (!r.consistently_oriented) core::orient_consistently(mesh);
+  if (r.closed) {
+    // Nested shells (cavities) face into the cavity: CGAL decides which shell is inside which.
+    std::optional<SurfaceMesh> sm = to_surface_mesh(mesh);
+    if (sm && !PMP::does_self_intersect(*sm)) {
+      PMP::orient_to_bound_a_volume(*sm);
+      std::size_t i = 0;
+      for (auto f : sm->faces()) {
+        core::Tri& t = mesh.cells[i++];
+        // A turned face keeps its first vertex (as core::orient_consistently does).
+        for (auto h : CGAL::halfedges_around_face(sm->halfedge(f), *sm))
+          if (static_cast<int>(sm->source(h).idx()) == t[0] && static_cast<int>(sm->target(h).idx()) == t[2])
+            t = {t[0], t[2], t[1]};
+      }
+    }
+  }
+  int turned = 0;
+  for (std::size_t i = 0; i < before.size(); ++i) turned += mesh.cells[i] != before[i] ? 1 : 0;
+  return turned;
+}
+
+void fill_holes(core::TriMesh& mesh, int max_edges, RepairReport& report) {
+  std::optional<SurfaceMesh> sm = to_surface_mesh(mesh);
+  if (!sm) return;  // not manifold: the check after the repairs says where
+  // One border halfedge per hole, in a fixed order, before any patch changes the borders.
+  std::vector<SurfaceMesh::Halfedge_index> holes;
+  std::vector<bool> seen(sm->number_of_halfedges(), false);
+  for (auto h : sm->halfedges()) {
+    if (!sm->is_border(h) || seen[h.idx()]) continue;
+    int edges = 0;
+    for (auto g : CGAL::halfedges_around_face(h, *sm)) {
+      seen[g.idx()] = true;
+      ++edges;
+    }
+    if (edges <= max_edges)
+      holes.push_back(h);
+    else
+      ++report.open_holes;
+  }
+  for (auto h : holes) {
+    std::vector<SurfaceMesh::Face_index> faces;
+    std::vector<SurfaceMesh::Vertex_index> vertices;
+    const bool faired = std::get<0>(
+        PMP::triangulate_refine_and_fair_hole(*sm, h, std::back_inserter(faces), std::back_inserter(vertices)));
+    (void)faired;  // a patch that could not be faired is still a refined, closed patch
+    ++report.filled_holes;
+    report.hole_triangles += static_cast<int>(faces.size());
+  }
+  if (!holes.empty()) mesh = to_tri_mesh(*sm);
+}
+
+void alpha_wrap(core::TriMesh& mesh, double alpha, double offset, RepairReport& report) {
+  std::vector<Kernel::Point_3> points;
+  points.reserve(mesh.points.size());
+  for (const core::Vec3& p : mesh.points) points.emplace_back(p.x(), p.y(), p.z());
+  std::vector<std::array<std::size_t, 3>> faces;
+  faces.reserve(mesh.cells.size());
+  for (const core::Tri& t : mesh.cells)
+    faces.push_back({static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]), static_cast<std::size_t>(t[2])});
+  SurfaceMesh wrap;
+  CGAL::alpha_wrap_3(points, faces, alpha, offset, wrap);
+  mesh = to_tri_mesh(wrap);
+  report.wrapped = true;
+  report.wrap_triangles = static_cast<int>(mesh.cells.size());
+  report.wrap_alpha = alpha;
+  report.wrap_offset = offset;
+}
+
+bool refine_coarse(core::TriMesh& mesh, double target_edge) {
+  std::optional<SurfaceMesh> sm = to_surface_mesh(mesh);
+  if (!sm || !CGAL::is_closed(*sm)) return false;  // the check after the repairs says why
+  auto sharp = sm->add_property_map<SurfaceMesh::Edge_index, bool>("e:sharp", false).first;
+  PMP::detect_sharp_edges(*sm, 60.0, sharp);
+  // Corners (a vertex on other than two sharp edges, or on none but a cone's apex) stay put.
+  auto corner = sm->add_property_map<SurfaceMesh::Vertex_index, bool>("v:corner", false).first;
+  for (auto v : sm->vertices()) {
+    int n = 0;
+    for (auto h : CGAL::halfedges_around_target(sm->halfedge(v), *sm)) n += sharp[sm->edge(h)] ? 1 : 0;
+    corner[v] = n > 0 && n != 2;
+  }
+  PMP::isotropic_remeshing(faces(*sm), target_edge, *sm,
+                           CGAL::parameters::number_of_iterations(3)
+                               .edge_is_constrained_map(sharp)
+                               .vertex_is_constrained_map(corner));
+  sm->collect_garbage();
+  mesh = to_tri_mesh(*sm);
+  return true;
+}
+
+}  // namespace polycube::repair::detail

@@ -1,0 +1,25 @@
+#pragma once
+//! \file geometry_repairs.h
+//! \brief The repairs of repair.h built on CGAL: orientation that bounds a volume, hole filling,
+//! alpha wrapping. Internal to the repair module.
+
+#include "core/types.h"
+#include "repair/repair.h"
+
+namespace polycube::repair::detail {
+
+//! Turn the triangles of a manifold, orientable surface so that they are consistent and, where
+//! closed, bound a volume (nested shells alternate). \return the number of triangles turned
+int orient_to_bound_volume(core::TriMesh& mesh);
+
+//! Close the holes of at most `max_edges` boundary edges with refined, faired patches.
+void fill_holes(core::TriMesh& mesh, int max_edges, RepairReport& report);
+
+//! Replace the surface by its alpha wrap (alpha and offset in model units).
+void alpha_wrap(core::TriMesh& mesh, double alpha, double offset, RepairReport& report);
+
+//! Remesh a closed surface isotropically at `target_edge` (model units), its sharp edges
+//! (dihedral angle beyond 60 degrees) and their corners kept. \return whether it was remeshed
+bool refine_coarse(core::TriMesh& mesh, double target_edge);
+
+}  // namespace polycube::repair::detail
