@@ -119,8 +119,6 @@ void run_info(const InfoOptions& o) {
       core::TriMesh surface = core::triangles_of(d);
       const repair::RepairReport repaired = repair::repair_surface(surface, o.repair);
       std::vector<std::string> repairs = repaired.lines();
-      const repair::RefineReport refined = repair::refine_if_coarse(surface);
-      if (refined.refined) repairs.push_back(refined.line());
       j["repairs"] = repairs;
       if (!repairs.empty()) {
         text +=

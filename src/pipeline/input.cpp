@@ -41,8 +41,6 @@ ConstructInput read_construct_input(const std::filesystem::path& path, const rep
     }
     const repair::RepairReport repaired = repair::repair_surface(*in.surface, repairs);
     in.repairs = repaired.lines();
-    const repair::RefineReport refined = repair::refine_if_coarse(*in.surface);
-    if (refined.refined) in.repairs.push_back(refined.line());
     for (const std::string& line : in.repairs) core::logger().warn("{}: {}", name, line);
     construct::check_closed_surface(*in.surface);
   } catch (const core::InputError& e) {

@@ -4,9 +4,7 @@
 #include "core/topology.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
-#include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/Surface_mesh.h>
@@ -134,27 +132,6 @@ void alpha_wrap(core::TriMesh& mesh, double alpha, double offset, RepairReport& 
   report.wrap_triangles = static_cast<int>(mesh.cells.size());
   report.wrap_alpha = alpha;
   report.wrap_offset = offset;
-}
-
-bool refine_coarse(core::TriMesh& mesh, double target_edge) {
-  std::optional<SurfaceMesh> sm = to_surface_mesh(mesh);
-  if (!sm || !CGAL::is_closed(*sm)) return false;  // the check after the repairs says why
-  auto sharp = sm->add_property_map<SurfaceMesh::Edge_index, bool>("e:sharp", false).first;
-  PMP::detect_sharp_edges(*sm, 60.0, sharp);
-  // Corners (a vertex on other than two sharp edges, or on none but a cone's apex) stay put.
-  auto corner = sm->add_property_map<SurfaceMesh::Vertex_index, bool>("v:corner", false).first;
-  for (auto v : sm->vertices()) {
-    int n = 0;
-    for (auto h : CGAL::halfedges_around_target(sm->halfedge(v), *sm)) n += sharp[sm->edge(h)] ? 1 : 0;
-    corner[v] = n > 0 && n != 2;
-  }
-  PMP::isotropic_remeshing(faces(*sm), target_edge, *sm,
-                           CGAL::parameters::number_of_iterations(3)
-                               .edge_is_constrained_map(sharp)
-                               .vertex_is_constrained_map(corner));
-  sm->collect_garbage();
-  mesh = to_tri_mesh(*sm);
-  return true;
 }
 
 }  // namespace polycube::repair::detail

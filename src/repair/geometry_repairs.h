@@ -18,8 +18,4 @@ void fill_holes(core::TriMesh& mesh, int max_edges, RepairReport& report);
 //! Replace the surface by its alpha wrap (alpha and offset in model units).
 void alpha_wrap(core::TriMesh& mesh, double alpha, double offset, RepairReport& report);
 
-//! Remesh a closed surface isotropically at `target_edge` (model units), its sharp edges
-//! (dihedral angle beyond 60 degrees) and their corners kept. \return whether it was remeshed
-bool refine_coarse(core::TriMesh& mesh, double target_edge);
-
 }  // namespace polycube::repair::detail

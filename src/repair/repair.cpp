@@ -216,34 +216,4 @@ RepairReport repair_surface(core::TriMesh& mesh, const RepairOptions& options) {
   return report;
 }
 
-std::string RefineReport::line() const {
-  if (!refined) return {};
-  return fmt::format(
-      "refined a coarse surface (longest edge {:.0f} % of the diagonal): {} -> {} triangles, by isotropic "
-      "remeshing with its sharp edges kept",
-      100.0 * longest_edge, triangles_before, triangles_after);
-}
-
-RefineReport refine_if_coarse(core::TriMesh& mesh) {
-  RefineReport r;
-  const double diagonal = core::bounding_box(mesh.points).extent().norm();
-  if (!(diagonal > 0)) return r;
-  r.triangles_before = static_cast<int>(mesh.cells.size());
-  // A large triangle facing away from every axis is one the labeling has to split between
-  // charts, which it can only do along edges.
-  const double axis_cos = std::cos(30.0 * 3.14159265358979323846 / 180.0);
-  bool coarse = false;
-  for (const core::Tri& t : mesh.cells) {
-    const core::Vec3 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]];
-    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()}) / diagonal;
-    r.longest_edge = std::max(r.longest_edge, longest);
-    const core::Vec3 n = (b - a).cross(c - a);
-    if (longest > 0.1 && n.norm() > 0 && n.cwiseAbs().maxCoeff() < axis_cos * n.norm()) coarse = true;
-  }
-  if (coarse) r.refined = detail::refine_coarse(mesh, diagonal / 40.0);
-  if (r.refined) mesh.labels.clear();
-  r.triangles_after = static_cast<int>(mesh.cells.size());
-  return r;
-}
-
 }  // namespace polycube::repair

@@ -43,23 +43,6 @@ struct RepairOptions {
   double wrap_offset = 0.001;      //!< the wrap's distance to the input, a fraction of the diagonal
 };
 
-//! What refine_if_coarse did.
-struct RefineReport {
-  bool refined = false;
-  double longest_edge = 0.0;  //!< before, a fraction of the bounding-box diagonal
-  int triangles_before = 0, triangles_after = 0;
-  //! "refined a coarse surface (...)", or empty
-  [[nodiscard]] std::string line() const;
-};
-
-//! A surface of few, large triangles cannot carry the charts of a polycube labeling (a
-//! tetrahedron's slanted face has to be split between three charts, along edges it does not
-//! have): when a triangle longer than a tenth of the bounding-box diagonal faces more than 30
-//! degrees away from every axis, remesh the surface isotropically at a fortieth of the
-//! diagonal, sharp edges (beyond 60 degrees) and corners kept, so the shape stays the same up
-//! to the projection onto it. Other surfaces (every shared model, boxes of large triangles)
-//! are unchanged.
-RefineReport refine_if_coarse(core::TriMesh& mesh);
 
 //! What repair_surface changed.
 struct RepairReport {

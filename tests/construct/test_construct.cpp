@@ -132,7 +132,7 @@ TEST(Tetrahedralize, RefusesOpenSurface) {
   } catch (const core::InputError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("open: 3 boundary edge(s) in 1 hole(s)"), std::string::npos) << what;
-    EXPECT_NE(what.find("Close Holes"), std::string::npos) << what;  // the remedy
+    EXPECT_NE(what.find("--repair holes"), std::string::npos) << what;  // the remedy
     // Where: the midpoint of one of the removed triangle's edges.
     bool named = false;
     for (int k = 0; k < 3; ++k) {

@@ -153,60 +153,6 @@ TEST(GeometryRepair, TheWrapMakesOverlappingBoxesOneClosedSolid) {
   EXPECT_NEAR(core::signed_volume(m), 1875.0, 1875.0 * 0.05);
 }
 
-//! A closed polyhedron of few triangles: its points and outward triangles.
-core::TriMesh polyhedron(std::vector<core::Vec3> points, std::vector<core::Tri> cells) {
-  core::TriMesh m;
-  m.points = std::move(points);
-  m.cells = std::move(cells);
-  return m;
-}
-
-core::TriMesh tetrahedron() {
-  return polyhedron({{0, 0, 0}, {10, 0, 0}, {0, 10, 0}, {0, 0, 10}}, {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}});
-}
-
-core::TriMesh pyramid() {
-  return polyhedron({{0, 0, 0}, {10, 0, 0}, {10, 10, 0}, {0, 10, 0}, {5, 5, 8}},
-                    {{0, 2, 1}, {0, 3, 2}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}});
-}
-
-//! A triangular prism lying on a rectangle: 8 triangles.
-core::TriMesh wedge() {
-  return polyhedron({{0, 0, 0}, {20, 0, 0}, {20, 10, 0}, {0, 10, 0}, {0, 5, 6}, {20, 5, 6}},
-                    {{0, 2, 1}, {0, 3, 2}, {0, 1, 5}, {0, 5, 4}, {3, 4, 5}, {3, 5, 2}, {0, 4, 3}, {1, 2, 5}});
-}
-
-TEST(GeometryRepair, ACoarseSolidIsRefinedWithoutChangingItsShape) {
-  for (const core::TriMesh& coarse : {tetrahedron(), pyramid(), wedge()}) {
-    ASSERT_GT(core::signed_volume(coarse), 0);
-    core::TriMesh m = coarse;
-    const repair::RefineReport r = repair::refine_if_coarse(m);
-    EXPECT_TRUE(r.refined);
-    EXPECT_EQ(r.triangles_before, static_cast<int>(coarse.cells.size()));
-    EXPECT_EQ(r.triangles_after, static_cast<int>(m.cells.size()));
-    EXPECT_GT(m.cells.size(), 20 * coarse.cells.size());
-    std::string why;
-    EXPECT_TRUE(usable(m, &why)) << why;
-    // Same solid: the volume, the bounding box, every vertex on a face's plane.
-    EXPECT_NEAR(core::signed_volume(m), core::signed_volume(coarse), 1e-9 * core::signed_volume(coarse));
-    const core::BoundingBox a = core::bounding_box(coarse.points), b = core::bounding_box(m.points);
-    EXPECT_LT((a.min - b.min).norm() + (a.max - b.max).norm(), 1e-9);
-    for (const core::Vec3& p : m.points) {
-      double nearest = 1e300;
-      for (const core::Tri& t : coarse.cells) {
-        const core::Vec3 n = (coarse.points[t[1]] - coarse.points[t[0]]).cross(coarse.points[t[2]] - coarse.points[t[0]]).normalized();
-        nearest = std::min(nearest, std::abs(n.dot(p - coarse.points[t[0]])));
-      }
-      EXPECT_LT(nearest, 1e-9);
-    }
-  }
-  // A surface of fine triangles is left alone.
-  core::TriMesh fine = test::make_box(10, 10, 10, 12);
-  const core::TriMesh before = fine;
-  EXPECT_FALSE(repair::refine_if_coarse(fine).refined);
-  EXPECT_EQ(fine.cells, before.cells);
-}
-
 fs::path fresh_dir(const std::string& name) {
   const fs::path d = fs::path(::testing::TempDir()) / (name + "_" + std::to_string(::getpid()));
   fs::remove_all(d);
@@ -259,24 +205,6 @@ TEST(GeometryRepairCli, EachDefectIsRefusedWithItsRemedyAndGoesThroughWithIt) {
     EXPECT_TRUE(j["usable"].get<bool>());
     EXPECT_FALSE(j["repairs"].empty());
     EXPECT_TRUE(usable(io::read_surface(out)));
-  }
-  fs::remove_all(dir);
-}
-
-TEST(GeometryRepairCli, CoarseSolidsConstructAndSaySo) {
-  const fs::path dir = fresh_dir("repair_coarse");
-  const struct {
-    const char* name;
-    core::TriMesh mesh;
-  } cases[] = {{"tetrahedron", tetrahedron()}, {"pyramid", pyramid()}, {"wedge", wedge()}};
-  for (const auto& c : cases) {
-    SCOPED_TRACE(c.name);
-    const fs::path input = dir / (std::string(c.name) + ".obj");
-    io::write_mesh(input, core::to_mesh_data(c.mesh));
-    const auto r = test::run_cli("construct '" + input.string() + "' -o '" + (dir / c.name).string() + "'");
-    EXPECT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.err.find("refined a coarse surface"), std::string::npos) << r.err;
-    EXPECT_TRUE(fs::exists(dir / c.name / "polycube.mesh"));
   }
   fs::remove_all(dir);
 }

@@ -87,7 +87,6 @@ TEST(Repair, EverySharedSurfaceNeedsNothing) {
     const repair::RepairReport r = repair::repair_surface(m);
     EXPECT_FALSE(r.changed()) << entry.path() << ": "
                               << (r.lines().empty() ? "" : r.lines().front());
-    EXPECT_FALSE(repair::refine_if_coarse(m).refined) << entry.path();
     EXPECT_EQ(m.points, before.points) << entry.path();
     EXPECT_EQ(m.cells, before.cells) << entry.path();
     ++models;

@@ -1,0 +1,188 @@
+// The corpus of issue 24 (heavy: `make test-heavy`): each defect alone and two combined, 22
+// meshes written as files. Each goes through `polycube run` with the default repairs, or exits
+// 2 with one error line naming the remedy and then goes through with that remedy.
+#include "cli/run_cli.h"
+#include "core/topology.h"
+#include "io/mesh_io.h"
+#include "support/shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+namespace polycube {
+namespace {
+
+namespace fs = std::filesystem;
+
+core::TriMesh join(core::TriMesh a, const core::TriMesh& b) {
+  const int base = a.num_points();
+  a.points.insert(a.points.end(), b.points.begin(), b.points.end());
+  for (core::Tri t : b.cells) {
+    for (int& v : t) v += base;
+    a.cells.push_back(t);
+  }
+  return a;
+}
+
+core::TriMesh box() { return test::make_box(10, 14, 8, 5); }
+
+core::TriMesh inward(core::TriMesh m) {
+  for (core::Tri& t : m.cells) std::swap(t[1], t[2]);
+  return m;
+}
+
+core::TriMesh soup(const core::TriMesh& m) {
+  core::TriMesh s;
+  for (const core::Tri& t : m.cells) {
+    const int base = s.num_points();
+    for (const int v : t) s.points.push_back(m.points[v]);
+    s.cells.push_back({base, base + 1, base + 2});
+  }
+  return s;
+}
+
+//! Without the triangles whose three vertices satisfy `cut` (unused vertices kept, as files
+//! with holes have them).
+core::TriMesh without(core::TriMesh m, const std::function<bool(const core::Vec3&)>& cut) {
+  std::vector<core::Tri> kept;
+  for (const core::Tri& t : m.cells)
+    if (!(cut(m.points[t[0]]) && cut(m.points[t[1]]) && cut(m.points[t[2]]))) kept.push_back(t);
+  m.cells = std::move(kept);
+  return m;
+}
+
+core::TriMesh open_top(const core::TriMesh& m) {
+  return without(m, [](const core::Vec3& p) { return p.z() == 8; });
+}
+
+//! Two triangles of the top face out: two holes.
+core::TriMesh two_holes(core::TriMesh m) {
+  std::vector<core::Tri> kept;
+  int dropped = 0;
+  for (const core::Tri& t : m.cells) {
+    const bool top = m.points[t[0]].z() == 8 && m.points[t[1]].z() == 8 && m.points[t[2]].z() == 8;
+    if (top && (dropped == 0 || dropped == 20) && dropped++ >= 0) continue;
+    if (top) ++dropped;
+    kept.push_back(t);
+  }
+  m.cells = std::move(kept);
+  return m;
+}
+
+core::TriMesh with_degenerate_and_repeated(core::TriMesh m) {
+  m.cells.push_back({0, 0, 1});
+  m.cells.push_back(m.cells[3]);
+  return m;
+}
+
+core::TriMesh cavity() {
+  return join(test::make_box(10, 10, 10, 4), inward(test::make_box(3, 3, 3, 2, core::Vec3(3.5, 3.5, 3.5))));
+}
+
+core::TriMesh overlapping() {
+  return join(test::make_box(10, 10, 10, 3), test::make_box(10, 10, 10, 3, core::Vec3(5, 5, 5)));
+}
+
+core::TriMesh pinched() {
+  return join(test::make_box(10, 10, 10, 3), test::make_box(10, 10, 10, 3, core::Vec3(10, 10, 10)));
+}
+
+core::TriMesh debris() { return join(box(), test::make_box(1, 1, 1, 1, core::Vec3(30, 0, 0))); }
+
+//! An OBJ text: BOM, comments, unknown statements, quads as polygons, negative indices and
+//! v/vt/vn forms.
+std::string quirky_obj() {
+  const core::TriMesh b = test::make_box(10, 10, 10, 1);
+  std::ostringstream s;
+  s << "\xEF\xBB\xBF# exported\nmtllib box.mtl\no box\n";
+  for (const core::Vec3& p : b.points) s << fmt::format("v {} {} {}\n", p.x(), p.y(), p.z());
+  s << "vt 0 0\nvn 0 0 1\nusemtl grey\ns off\nc 1 2\n";
+  // Each face's two triangles as one quad; the second half with negative (relative) indices.
+  const int n = b.num_points();
+  for (std::size_t t = 0; t + 1 < b.cells.size(); t += 2) {
+    const core::Tri &a = b.cells[t], &c = b.cells[t + 1];  // (p00, p10, p11), (p00, p11, p01)
+    const std::array<int, 4> q{a[0], a[1], a[2], c[2]};
+    s << "f";
+    for (const int v : q) s << (t < 6 ? fmt::format(" {}/1/1", v + 1) : fmt::format(" {}", v - n));
+    s << "\n";
+  }
+  return s.str();
+}
+
+struct Case {
+  std::string name;
+  std::function<void(const fs::path&)> write;
+  std::string remedy;  //!< empty: goes through with the default repairs
+};
+
+std::function<void(const fs::path&)> mesh(core::TriMesh m) {
+  return [m](const fs::path& p) { io::write_mesh(p, core::to_mesh_data(m)); };
+}
+
+std::vector<Case> corpus() {
+  return {
+      {"soup", mesh(soup(box())), ""},
+      {"inward", mesh(inward(box())), ""},
+      {"degenerate_repeated", mesh(with_degenerate_and_repeated(box())), ""},
+      {"quirky_obj", [](const fs::path& p) { std::ofstream(p) << quirky_obj(); }, ""},
+      {"cavity", mesh(cavity()), ""},
+      {"debris", mesh(debris()), "--largest-component"},
+      {"open", mesh(open_top(box())), "--repair holes"},
+      {"two_holes", mesh(two_holes(box())), "--repair holes"},
+      {"overlapping", mesh(overlapping()), "--repair wrap --wrap-alpha 0.05"},
+      {"pinched", mesh(pinched()), "--repair wrap --wrap-alpha 0.05"},
+      // two defects combined
+      {"soup_inward", mesh(soup(inward(box()))), ""},
+      {"soup_degenerate", mesh(soup(with_degenerate_and_repeated(box()))), ""},
+      {"soup_cavity", mesh(soup(cavity())), ""},
+      {"inward_degenerate", mesh(inward(with_degenerate_and_repeated(box()))), ""},
+      {"soup_two_holes", mesh(soup(two_holes(box()))), "--repair holes"},
+      {"soup_pinched", mesh(soup(pinched())), "--repair wrap --wrap-alpha 0.05"},
+      {"inward_cavity", mesh(inward(cavity())), ""},
+      {"open_inward", mesh(inward(open_top(box()))), "--repair holes"},
+      {"soup_open", mesh(soup(open_top(box()))), "--repair holes"},
+      {"soup_debris", mesh(soup(debris())), "--largest-component"},
+      {"inward_debris", mesh(inward(debris())), "--largest-component"},
+      {"soup_overlapping", mesh(soup(overlapping())), "--repair wrap --wrap-alpha 0.05"},
+  };
+}
+
+TEST(RepairCorpus, EveryMeshGoesThroughOrIsRefusedWithTheRemedyThatWorks) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("repair_corpus_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::vector<Case> cases = corpus();
+  ASSERT_GE(cases.size(), 20u);
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const fs::path input = dir / (c.name + ".obj");
+    c.write(input);
+    const std::string run = fmt::format("run '{}' -o '{}' --hexes 300", input.string(), (dir / c.name).string());
+    const auto first = test::run_cli(run);
+    if (c.remedy.empty()) {
+      EXPECT_EQ(first.exit_code, 0) << first.err;
+      continue;
+    }
+    EXPECT_EQ(first.exit_code, 2) << first.err;
+    const std::size_t error = first.err.find("polycube: error: ");
+    ASSERT_NE(error, std::string::npos) << first.err;
+    const std::string line = first.err.substr(error);
+    EXPECT_EQ(std::count(line.begin(), line.end(), '\n'), 1) << first.err;
+    const std::string remedy = c.remedy.substr(0, c.remedy.find(" --wrap-alpha"));  // what the message names
+    EXPECT_NE(line.find(remedy), std::string::npos) << first.err;
+    const auto second = test::run_cli(run + " " + c.remedy);
+    EXPECT_EQ(second.exit_code, 0) << second.err;
+  }
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace polycube
