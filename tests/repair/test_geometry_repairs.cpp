@@ -27,22 +27,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-//! `b` appended to `a` as a separate set of vertices.
-core::TriMesh join(core::TriMesh a, const core::TriMesh& b) {
-  const int base = a.num_points();
-  a.points.insert(a.points.end(), b.points.begin(), b.points.end());
-  for (core::Tri t : b.cells) {
-    for (int& v : t) v += base;
-    a.cells.push_back(t);
-  }
-  return a;
-}
-
-core::TriMesh turned(core::TriMesh m) {
-  for (core::Tri& t : m.cells) std::swap(t[1], t[2]);
-  return m;
-}
-
 //! Whether construct would take it (closed, manifold, no self-intersection).
 bool usable(const core::TriMesh& m, std::string* why = nullptr) {
   try {
@@ -55,7 +39,7 @@ bool usable(const core::TriMesh& m, std::string* why = nullptr) {
 }
 
 TEST(GeometryRepair, AnInwardBoxIsTurnedOutward) {
-  core::TriMesh m = turned(test::make_box(2, 3, 4, 3));
+  core::TriMesh m = test::turned(test::make_box(2, 3, 4, 3));
   ASSERT_LT(core::signed_volume(m), 0);
   const repair::RepairReport r = repair::repair_surface(m);
   EXPECT_EQ(r.turned_triangles, static_cast<int>(m.cells.size()));
@@ -67,12 +51,12 @@ TEST(GeometryRepair, AnInwardBoxIsTurnedOutward) {
 TEST(GeometryRepair, ACavityKeepsFacingIntoItAndIsTurnedWhenItFacesOut) {
   const core::TriMesh outer = test::make_box(10, 10, 10, 2);
   const core::TriMesh inner = test::make_box(2, 2, 2, 1, core::Vec3(4, 4, 4));
-  core::TriMesh right = join(outer, turned(inner));  // the cavity's triangles face into it
+  core::TriMesh right = test::join(outer, test::turned(inner));  // the cavity's triangles face into it
   const core::TriMesh before = right;
   EXPECT_FALSE(repair::repair_surface(right).changed());
   EXPECT_EQ(right.cells, before.cells);
 
-  core::TriMesh wrong = join(outer, inner);  // the cavity's triangles face into the solid
+  core::TriMesh wrong = test::join(outer, inner);  // the cavity's triangles face into the solid
   const repair::RepairReport r = repair::repair_surface(wrong);
   EXPECT_EQ(r.turned_triangles, static_cast<int>(inner.cells.size()));
   EXPECT_NEAR(core::signed_volume(wrong), 1000.0 - 8.0, 1e-9);
@@ -80,7 +64,7 @@ TEST(GeometryRepair, ACavityKeepsFacingIntoItAndIsTurnedWhenItFacesOut) {
 
 TEST(GeometryRepair, APinchedVertexBecomesOneVertexPerSheet) {
   // Two boxes touching at one corner, sharing its vertex after the weld.
-  core::TriMesh m = join(test::make_box(1, 1, 1, 2), test::make_box(1, 1, 1, 2, core::Vec3(1, 1, 1)));
+  core::TriMesh m = test::join(test::make_box(1, 1, 1, 2), test::make_box(1, 1, 1, 2, core::Vec3(1, 1, 1)));
   const repair::RepairReport r = repair::repair_surface(m);
   EXPECT_EQ(r.merged_vertices, 1);
   EXPECT_EQ(r.split_vertices, 1);
@@ -96,7 +80,7 @@ TEST(GeometryRepair, APinchedVertexBecomesOneVertexPerSheet) {
 
 TEST(GeometryRepair, TheLargestComponentIsKeptOnRequest) {
   const core::TriMesh big = test::make_box(10, 10, 10, 2);
-  core::TriMesh m = join(big, test::make_box(1, 1, 1, 1, core::Vec3(20, 0, 0)));
+  core::TriMesh m = test::join(big, test::make_box(1, 1, 1, 1, core::Vec3(20, 0, 0)));
   repair::RepairOptions o;
   o.largest_component = true;
   const repair::RepairReport r = repair::repair_surface(m, o);
@@ -136,7 +120,7 @@ TEST(GeometryRepair, HolesUpToTheSizeAreClosed) {
 }
 
 TEST(GeometryRepair, TheWrapMakesOverlappingBoxesOneClosedSolid) {
-  core::TriMesh m = join(test::make_box(10, 10, 10, 3), test::make_box(10, 10, 10, 3, core::Vec3(5, 5, 5)));
+  core::TriMesh m = test::join(test::make_box(10, 10, 10, 3), test::make_box(10, 10, 10, 3, core::Vec3(5, 5, 5)));
   std::string why;
   ASSERT_FALSE(usable(m, &why));
   repair::RepairOptions o;
@@ -174,9 +158,9 @@ TEST(GeometryRepairCli, EachDefectIsRefusedWithItsRemedyAndGoesThroughWithIt) {
     const char* remedy;
   } cases[] = {
       {"open", open, "--repair holes"},
-      {"overlap", join(test::make_box(10, 10, 10, 3), test::make_box(10, 10, 10, 3, core::Vec3(5, 5, 5))),
+      {"overlap", test::join(test::make_box(10, 10, 10, 3), test::make_box(10, 10, 10, 3, core::Vec3(5, 5, 5))),
        "--repair wrap"},
-      {"pinched", join(box, test::make_box(10, 10, 10, 4, core::Vec3(10, 10, 10))), "--repair wrap"},
+      {"pinched", test::join(box, test::make_box(10, 10, 10, 4, core::Vec3(10, 10, 10))), "--repair wrap"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);
@@ -211,7 +195,7 @@ TEST(GeometryRepairCli, EachDefectIsRefusedWithItsRemedyAndGoesThroughWithIt) {
 
 TEST(GeometryRepairCli, RunReportsTheRepairsItMade) {
   const fs::path dir = fresh_dir("repair_run_report");
-  io::write_mesh(dir / "inward.obj", core::to_mesh_data(turned(test::make_box(10, 20, 15, 4))));
+  io::write_mesh(dir / "inward.obj", core::to_mesh_data(test::turned(test::make_box(10, 20, 15, 4))));
   const auto r = test::run_cli("-q run '" + (dir / "inward.obj").string() + "' -o '" + (dir / "out").string() +
                                "' --hexes 300 --no-optimize");
   ASSERT_EQ(r.exit_code, 0) << r.err;

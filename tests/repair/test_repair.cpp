@@ -22,20 +22,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-//! Every triangle with its own three vertices, as many exporters write.
-core::TriMesh soup_of(const core::TriMesh& m) {
-  core::TriMesh s;
-  for (const core::Tri& t : m.cells) {
-    const int base = static_cast<int>(s.points.size());
-    for (const int v : t) s.points.push_back(m.points[static_cast<std::size_t>(v)]);
-    s.cells.push_back({base, base + 1, base + 2});
-  }
-  return s;
-}
-
 TEST(Repair, ASoupOfABoxBecomesTheBox) {
   const core::TriMesh box = test::make_box(1, 2, 3, 2);
-  core::TriMesh soup = soup_of(box);
+  core::TriMesh soup = test::soup_of(box);
   const repair::RepairReport r = repair::repair_surface(soup);
   EXPECT_EQ(r.merged_vertices, static_cast<int>(3 * box.cells.size() - box.points.size()));
   EXPECT_EQ(r.degenerate_triangles, 0);
@@ -100,7 +89,7 @@ TEST(RepairCli, InfoReportsTheRepairsAndConstructMapsASoup) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   const core::TriMesh box = test::make_box(1, 2, 1.5, 3);
-  io::write_mesh(dir / "soup.obj", core::to_mesh_data(soup_of(box)));
+  io::write_mesh(dir / "soup.obj", core::to_mesh_data(test::soup_of(box)));
   const auto info = test::run_cli("--json info " + (dir / "soup.obj").string());
   ASSERT_EQ(info.exit_code, 0) << info.err;
   const nlohmann::json j = nlohmann::json::parse(info.out);

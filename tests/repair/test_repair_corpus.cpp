@@ -23,32 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-core::TriMesh join(core::TriMesh a, const core::TriMesh& b) {
-  const int base = a.num_points();
-  a.points.insert(a.points.end(), b.points.begin(), b.points.end());
-  for (core::Tri t : b.cells) {
-    for (int& v : t) v += base;
-    a.cells.push_back(t);
-  }
-  return a;
-}
-
 core::TriMesh box() { return test::make_box(10, 14, 8, 5); }
-
-core::TriMesh inward(core::TriMesh m) {
-  for (core::Tri& t : m.cells) std::swap(t[1], t[2]);
-  return m;
-}
-
-core::TriMesh soup(const core::TriMesh& m) {
-  core::TriMesh s;
-  for (const core::Tri& t : m.cells) {
-    const int base = s.num_points();
-    for (const int v : t) s.points.push_back(m.points[v]);
-    s.cells.push_back({base, base + 1, base + 2});
-  }
-  return s;
-}
 
 //! Without the triangles whose three vertices satisfy `cut` (unused vertices kept, as files
 //! with holes have them).
@@ -85,18 +60,18 @@ core::TriMesh with_degenerate_and_repeated(core::TriMesh m) {
 }
 
 core::TriMesh cavity() {
-  return join(test::make_box(10, 10, 10, 4), inward(test::make_box(3, 3, 3, 2, core::Vec3(3.5, 3.5, 3.5))));
+  return test::join(test::make_box(10, 10, 10, 4), test::turned(test::make_box(3, 3, 3, 2, core::Vec3(3.5, 3.5, 3.5))));
 }
 
 core::TriMesh overlapping() {
-  return join(test::make_box(10, 10, 10, 3), test::make_box(10, 10, 10, 3, core::Vec3(5, 5, 5)));
+  return test::join(test::make_box(10, 10, 10, 3), test::make_box(10, 10, 10, 3, core::Vec3(5, 5, 5)));
 }
 
 core::TriMesh pinched() {
-  return join(test::make_box(10, 10, 10, 3), test::make_box(10, 10, 10, 3, core::Vec3(10, 10, 10)));
+  return test::join(test::make_box(10, 10, 10, 3), test::make_box(10, 10, 10, 3, core::Vec3(10, 10, 10)));
 }
 
-core::TriMesh debris() { return join(box(), test::make_box(1, 1, 1, 1, core::Vec3(30, 0, 0))); }
+core::TriMesh debris() { return test::join(box(), test::make_box(1, 1, 1, 1, core::Vec3(30, 0, 0))); }
 
 //! An OBJ text: BOM, comments, unknown statements, quads as polygons, negative indices and
 //! v/vt/vn forms.
@@ -139,8 +114,8 @@ std::function<void(const fs::path&)> mesh(core::TriMesh m) {
 
 std::vector<Case> corpus() {
   return {
-      {"soup", mesh(soup(box())), ""},
-      {"inward", mesh(inward(box())), ""},
+      {"soup", mesh(test::soup_of(box())), ""},
+      {"inward", mesh(test::turned(box())), ""},
       {"degenerate_repeated", mesh(with_degenerate_and_repeated(box())), ""},
       {"quirky_obj", [](const fs::path& p) { std::ofstream(p) << quirky_obj(); }, ""},
       {"cavity", mesh(cavity()), ""},
@@ -150,17 +125,17 @@ std::vector<Case> corpus() {
       {"overlapping", mesh(overlapping()), "--repair wrap --wrap-alpha 0.05"},
       {"pinched", mesh(pinched()), "--repair wrap --wrap-alpha 0.05"},
       // two defects combined
-      {"soup_inward", mesh(soup(inward(box()))), ""},
-      {"soup_degenerate", mesh(soup(with_degenerate_and_repeated(box()))), ""},
-      {"soup_cavity", mesh(soup(cavity())), ""},
-      {"inward_degenerate", mesh(inward(with_degenerate_and_repeated(box()))), ""},
-      {"soup_two_holes", mesh(soup(two_holes(box()))), "--repair holes"},
-      {"inward_cavity", mesh(inward(cavity())), ""},
-      {"open_inward", mesh(inward(open_top(box()))), "--repair holes"},
-      {"soup_open", mesh(soup(open_top(box()))), "--repair holes"},
-      {"soup_debris", mesh(soup(debris())), ""},
-      {"inward_debris", mesh(inward(debris())), ""},
-      {"soup_overlapping", mesh(soup(overlapping())), "--repair wrap --wrap-alpha 0.05"},
+      {"soup_inward", mesh(test::soup_of(test::turned(box()))), ""},
+      {"soup_degenerate", mesh(test::soup_of(with_degenerate_and_repeated(box()))), ""},
+      {"soup_cavity", mesh(test::soup_of(cavity())), ""},
+      {"inward_degenerate", mesh(test::turned(with_degenerate_and_repeated(box()))), ""},
+      {"soup_two_holes", mesh(test::soup_of(two_holes(box()))), "--repair holes"},
+      {"inward_cavity", mesh(test::turned(cavity())), ""},
+      {"open_inward", mesh(test::turned(open_top(box()))), "--repair holes"},
+      {"soup_open", mesh(test::soup_of(open_top(box()))), "--repair holes"},
+      {"soup_debris", mesh(test::soup_of(debris())), ""},
+      {"inward_debris", mesh(test::turned(debris())), ""},
+      {"soup_overlapping", mesh(test::soup_of(overlapping())), "--repair wrap --wrap-alpha 0.05"},
   };
 }
 

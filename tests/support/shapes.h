@@ -95,4 +95,32 @@ inline core::TriMesh make_torus(double R, double r, int nu, int nv) {
   return m;
 }
 
+//! `b` appended to `a` as a separate set of vertices.
+inline core::TriMesh join(core::TriMesh a, const core::TriMesh& b) {
+  const int base = a.num_points();
+  a.points.insert(a.points.end(), b.points.begin(), b.points.end());
+  for (core::Tri t : b.cells) {
+    for (int& v : t) v += base;
+    a.cells.push_back(t);
+  }
+  return a;
+}
+
+//! Every triangle turned the other way (an outward surface faces inward).
+inline core::TriMesh turned(core::TriMesh m) {
+  for (core::Tri& t : m.cells) std::swap(t[1], t[2]);
+  return m;
+}
+
+//! Every triangle with its own three vertices, as many exporters write.
+inline core::TriMesh soup_of(const core::TriMesh& m) {
+  core::TriMesh s;
+  for (const core::Tri& t : m.cells) {
+    const int base = s.num_points();
+    for (const int v : t) s.points.push_back(m.points[static_cast<std::size_t>(v)]);
+    s.cells.push_back({base, base + 1, base + 2});
+  }
+  return s;
+}
+
 }  // namespace polycube::test
