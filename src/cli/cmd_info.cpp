@@ -118,7 +118,7 @@ void run_info(const InfoOptions& o) {
       // The surface as construct and run see it: after the repairs that never move it.
       core::TriMesh surface = core::triangles_of(d);
       const repair::RepairReport repaired = repair::repair_surface(surface, o.repair);
-      std::vector<std::string> repairs = repaired.lines();
+      std::vector<std::string> repairs = repaired.lines(true);
       j["repairs"] = repairs;
       if (!repairs.empty()) {
         text +=

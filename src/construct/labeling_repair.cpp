@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <limits>
 
 namespace polycube::construct {
@@ -28,7 +29,9 @@ class Repairer {
  public:
   Repairer(const SurfaceGraph& g, const Energy& en, std::vector<int> labels)
       : g_(g), en_(en), labels_(std::move(labels)), mark_(static_cast<std::size_t>(g.num_triangles), 0),
-        vmark_(static_cast<std::size_t>(g.num_vertices), 0) {}
+        vmark_(static_cast<std::size_t>(g.num_vertices), 0) {
+    for (const int l : labels_) ++label_count_[static_cast<std::size_t>(l)];
+  }
 
   const std::vector<int>& labels() const { return labels_; }
 
@@ -44,6 +47,10 @@ class Repairer {
         double best_delta = std::numeric_limits<double>::infinity();
         std::vector<int> defects(moves.size());
         for (std::size_t i = 0; i < moves.size(); ++i) {
+          if (drops_a_direction(moves[i])) {
+            defects[i] = std::numeric_limits<int>::max();
+            continue;
+          }
           const double delta = energy_delta(moves[i]);
           const int k = defects[i] = evaluate(moves[i]);
           if (k < best_defects || (k == best_defects && best >= 0 && delta < best_delta)) {
@@ -72,7 +79,11 @@ class Repairer {
           }
         }
         if (best >= 0) {
-          for (const int t : moves[best].triangles) labels_[t] = moves[best].label;
+          for (const int t : moves[best].triangles) {
+            --label_count_[static_cast<std::size_t>(labels_[t])];
+            labels_[t] = moves[best].label;
+            ++label_count_[static_cast<std::size_t>(labels_[t])];
+          }
           return true;
         }
       }
@@ -84,6 +95,20 @@ class Repairer {
   const core::TriMesh* surface_ = nullptr;  //!< set: rank tied moves by the polycube estimate
 
  private:
+  //! Whether a move takes the last triangles of a label. Every closed polycube has a chart facing
+  //! each of the six directions (the surface's extreme points along each axis), so such a move
+  //! leads away from every valid labeling, however many defects it seems to remove: taken, it
+  //! collapses a coarse shape into one chart with a single defect (a tetrahedron's four faces
+  //! all labelled -Y), which no later move can undo.
+  bool drops_a_direction(const Move& m) {
+    std::array<int, kNumLabels> taken{};
+    for (const int t : m.triangles)
+      if (labels_[t] != m.label) ++taken[static_cast<std::size_t>(labels_[t])];
+    for (std::size_t l = 0; l < taken.size(); ++l)
+      if (taken[l] > 0 && taken[l] == label_count_[l]) return true;
+    return false;
+  }
+
   //! Area fraction the fast polycube estimate folds after a move (labels restored afterwards).
   double folded_area(const Move& m) {
     saved_.clear();
@@ -250,6 +275,7 @@ class Repairer {
   std::vector<int> vmark_;
   int stamp_ = 0;
   std::vector<int> saved_;
+  std::array<int, kNumLabels> label_count_{};  //!< triangles per label
 };
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <tuple>
 
@@ -211,7 +212,15 @@ bool OccupancyGrid::in(std::array<int, 3> c) const {
   return inside[index(c)] != 0;
 }
 
-int insert_plane(OccupancyGrid& g, int axis, double coordinate, double tolerance) {
+double grid_diagonal(const OccupancyGrid& g) {
+  double sq = 0.0;
+  for (const auto& pl : g.planes)
+    if (!pl.empty()) sq += (pl.back() - pl.front()) * (pl.back() - pl.front());
+  return std::sqrt(sq);
+}
+
+int insert_plane(OccupancyGrid& g, int axis, double coordinate, double relative_tolerance) {
+  const double tolerance = relative_tolerance * grid_diagonal(g);
   auto& pl = g.planes[axis];
   const auto it = std::lower_bound(pl.begin(), pl.end(), coordinate - tolerance);
   if (it != pl.end() && *it <= coordinate + tolerance) return static_cast<int>(it - pl.begin());
@@ -297,8 +306,9 @@ void index_boxes(const OccupancyGrid& g, BoxPartition& p) {
 OccupancyGrid occupancy_grid(const core::PolycubeMap& map, double tolerance) {
   if (map.tets.empty()) throw core::InputError("box partition: the map has no tets");
   const structure::PolycubeStructure s = structure::extract_structure(map);
-  const mesh::TetLocator locator(map.tets, map.polycube, tolerance);
-  const mesh::Arrangement arr = mesh::build_arrangement(s, locator, tolerance, kMaxCells);
+  const double absolute = tolerance * core::bounding_box(map.polycube).extent().norm();
+  const mesh::TetLocator locator(map.tets, map.polycube, absolute);
+  const mesh::Arrangement arr = mesh::build_arrangement(s, locator, absolute, kMaxCells);
   OccupancyGrid g;
   g.planes = arr.level;
   g.inside.assign(arr.inside.begin(), arr.inside.end());

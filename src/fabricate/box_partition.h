@@ -59,7 +59,8 @@ struct BoxPartition {
 };
 
 //! The occupancy grid of a polycube map's polycube: planes from its charts (within `tolerance`
-//! of each other, polycube units, merged), cells located in its tets.
+//! of each other, relative to the polycube's bounding-box diagonal, merged), cells located in
+//! its tets.
 //! \throw core::InputError when the map has no tets or no chart on some axis
 OccupancyGrid occupancy_grid(const core::PolycubeMap& map, double tolerance = 1e-6);
 
@@ -78,12 +79,16 @@ void merge_boxes(const OccupancyGrid& grid, BoxPartition& partition,
 void index_boxes(const OccupancyGrid& grid, BoxPartition& partition);
 
 //! The grid with one more plane at `coordinate` on `axis` (cells it crosses split in two, each
-//! half inside when the cell was); the same grid when a plane lies within `tolerance` of it.
-//! Returns the plane's index.
+//! half inside when the cell was); the same grid when a plane lies within `tolerance` (relative
+//! to the grid's diagonal) of it. Returns the plane's index.
 int insert_plane(OccupancyGrid& grid, int axis, double coordinate, double tolerance = 1e-9);
 
 //! Split every box that grid plane `plane` of `axis` crosses into its two halves, then re-index.
 void split_boxes(const OccupancyGrid& grid, BoxPartition& partition, int axis, int plane);
+
+//! Length of the grid's diagonal (polycube units): what the tolerances are relative to, so a
+//! model in micrometres or kilometres is cut as in millimetres.
+double grid_diagonal(const OccupancyGrid& grid);
 
 //! Box corner (i, j, k each 0 or 1 for lo or hi) in polycube coordinates.
 core::Vec3 box_corner(const OccupancyGrid& grid, const Box& box, int i, int j, int k);

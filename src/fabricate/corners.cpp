@@ -4,7 +4,8 @@
 namespace polycube::fabricate {
 
 ToModel::ToModel(const core::PolycubeMap& map, double tolerance)
-    : map_(map), locator_(map.tets, map.polycube, tolerance) {}
+    : map_(map),
+      locator_(map.tets, map.polycube, tolerance * core::bounding_box(map.polycube).extent().norm()) {}
 
 core::Vec3 ToModel::operator()(const core::Vec3& q, bool* located) const {
   bool inside = false;

@@ -16,7 +16,8 @@ namespace polycube::fabricate {
 //! the nearest one), the same barycentric coordinates in its model-space twin.
 class ToModel {
  public:
-  //! \param tolerance polycube-space distance within which a point counts as inside a tet
+  //! \param tolerance distance within which a point counts as inside a tet, relative to the
+  //!        polycube's bounding-box diagonal
   explicit ToModel(const core::PolycubeMap& map, double tolerance = 1e-6);
   //! The model-space point of q; `located` says whether q was inside a tet.
   core::Vec3 operator()(const core::Vec3& q, bool* located = nullptr) const;
@@ -34,7 +35,8 @@ struct BoxCorners {
 };
 
 //! Map the corners of the partition's boxes into model space.
-//! \param tolerance polycube-space distance within which a corner counts as inside a tet
+//! \param tolerance distance within which a corner counts as inside a tet, relative to the
+//!        polycube's bounding-box diagonal
 BoxCorners map_corners(const core::PolycubeMap& map, const OccupancyGrid& grid,
                        const BoxPartition& partition, double tolerance = 1e-6);
 

@@ -44,7 +44,8 @@ CutPlane fit_cut_plane(const ToModel& to_model, const OccupancyGrid& grid,
                        const BoxPartition& partition, const Cut& cut);
 
 //! One plane per cut of the plan (same order); a separation (axis -1) gets none (points 0).
-//! \param tolerance polycube-space distance within which a point counts as inside a tet
+//! \param tolerance distance within which a point counts as inside a tet, relative to the
+//!        polycube's bounding-box diagonal
 std::vector<CutPlane> fit_cut_planes(const core::PolycubeMap& map, const OccupancyGrid& grid,
                                      const CutPlan& plan, double tolerance = 1e-6);
 

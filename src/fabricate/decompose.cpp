@@ -128,7 +128,8 @@ Round decompose_grid(const core::PolycubeMap& map, const core::TriMesh& solid,
   for (const auto& [axis, coordinate] : forced) {
     const auto& pl = grid.planes[axis];
     const int k =
-        static_cast<int>(std::lower_bound(pl.begin(), pl.end(), coordinate - 1e-9) - pl.begin());
+        static_cast<int>(std::lower_bound(pl.begin(), pl.end(), coordinate - 1e-9 * grid_diagonal(grid)) -
+                         pl.begin());
     split_boxes(grid, partition, axis, k);
   }
   if (merge) merge_boxes(grid, partition, fits);
@@ -210,7 +211,7 @@ Decomposition decompose(const core::PolycubeMap& map, const core::TriMesh& solid
   d.boxes = static_cast<int>(partition_boxes(base).boxes.size());
   std::vector<std::pair<int, double>> forced;  // (axis, polycube coordinate) split planes
   std::vector<Extent> refused;                 // boxes whose real part did not fit
-  const double tolerance = 1e-9;
+  const double tolerance = 1e-9 * grid_diagonal(base);  // relative: any unit cuts alike
   for (int round = 1;; ++round) {
     if (options.chamber.limited()) split_until_boxes_fit(base, to_model, options.chamber, forced);
     d.grid = base;

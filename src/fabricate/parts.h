@@ -57,7 +57,7 @@ using BoxOf = std::function<int(const core::Vec3&)>;
 //! BoxOf through the map: the point is located in a model-space tet (or the nearest one), taken
 //! to polycube space with the same barycentric coordinates, and looked up in the grid.
 BoxOf box_lookup(const core::PolycubeMap& map, const OccupancyGrid& grid,
-                 const BoxPartition& partition, double tolerance = 1e-9);
+                 const BoxPartition& partition, double tolerance = 1e-9);  // relative to the model's diagonal
 
 //! Cut the solid (a closed, outward, self-intersection-free triangle surface) along the plan.
 //! \param centres the mapped centre of every box of the plan's partition (model space)

@@ -37,7 +37,7 @@ std::vector<std::uint8_t> overhanging(const core::TriMesh& mesh, const Vec3& dow
     bed = std::max(bed, p.dot(d));
     lo = std::min(lo, p.dot(d));
   }
-  const double eps = 1e-9 * std::max(1.0, bed - lo);
+  const double eps = 1e-9 * (bed - lo);  // relative: the same for the model in any unit
   const double steep = std::cos(overhang_degrees * M_PI / 180.0);
   std::vector<std::uint8_t> out(mesh.cells.size(), 0);
   for (std::size_t t = 0; t < mesh.cells.size(); ++t) {

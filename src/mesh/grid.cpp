@@ -189,8 +189,10 @@ double choose_scale(const Arrangement& arr, int which, double target, const std:
   double lo = s0 / 4.0;
   double hi = s0 * 4.0;
   auto count = [&](double s) { return counts_of(arr, levels(s))[which]; };
-  while (count(lo) >= target && lo > 1e-12) lo /= 2.0;
-  while (count(hi) < target && hi < 1e12) hi *= 2.0;
+  // Bounded relative to s0 (not absolutely): a model in micrometres or in kilometres needs scales
+  // far from 1.
+  while (count(lo) >= target && lo > s0 * 1e-12) lo /= 2.0;
+  while (count(hi) < target && hi < s0 * 1e12) hi *= 2.0;
   for (int it = 0; it < 60; ++it) {
     const double mid = 0.5 * (lo + hi);
     (count(mid) >= target ? hi : lo) = mid;

@@ -96,14 +96,21 @@ void fill_holes(core::TriMesh& mesh, int max_edges, RepairReport& report) {
   for (auto h : sm->halfedges()) {
     if (!sm->is_border(h) || seen[h.idx()]) continue;
     int edges = 0;
+    core::Vec3 sum = core::Vec3::Zero();
     for (auto g : CGAL::halfedges_around_face(h, *sm)) {
       seen[g.idx()] = true;
       ++edges;
+      const auto& p = sm->point(sm->target(g));
+      sum += core::Vec3(p.x(), p.y(), p.z());
     }
-    if (edges <= max_edges)
+    const core::Vec3 centre = sum / std::max(1, edges);
+    if (edges <= max_edges) {
       holes.push_back(h);
-    else
+      RepairReport::note(report.sites.filled, centre);
+    } else {
       ++report.open_holes;
+      RepairReport::note(report.sites.open, centre);
+    }
   }
   for (auto h : holes) {
     std::vector<SurfaceMesh::Face_index> faces;

@@ -19,8 +19,12 @@ namespace polycube::repair {
 
 namespace {
 
+core::Vec3 centre(const std::vector<core::Vec3>& points, const core::Tri& t) {
+  return (points[t[0]] + points[t[1]] + points[t[2]]) / 3.0;
+}
+
 //! Maps every vertex to the first vertex (in file order) at exactly its coordinates.
-std::vector<int> first_at_same_point(const std::vector<core::Vec3>& points, int& merged) {
+std::vector<int> first_at_same_point(const std::vector<core::Vec3>& points, RepairReport& report) {
   std::vector<int> order(points.size());
   std::iota(order.begin(), order.end(), 0);
   const auto less = [&](int a, int b) {
@@ -39,7 +43,8 @@ std::vector<int> first_at_same_point(const std::vector<core::Vec3>& points, int&
                cur = static_cast<std::size_t>(order[i]);
     if (points[prev] == points[cur]) {
       to[cur] = to[prev];
-      ++merged;
+      ++report.merged_vertices;
+      RepairReport::note(report.sites.merged, points[cur]);
     }
   }
   return to;
@@ -56,7 +61,7 @@ core::Tri canonical(const core::Tri& t) {
 //! Steps 1-4 of repair.h: weld exactly equal vertices, drop degenerate and repeated triangles
 //! and unused vertices.
 void weld(core::TriMesh& mesh, RepairReport& report) {
-  const std::vector<int> to = first_at_same_point(mesh.points, report.merged_vertices);
+  const std::vector<int> to = first_at_same_point(mesh.points, report);
   const bool labelled = mesh.labels.size() == mesh.cells.size();
   std::vector<core::Tri> cells;
   std::vector<int> labels;
@@ -66,10 +71,12 @@ void weld(core::TriMesh& mesh, RepairReport& report) {
     for (int& v : c) v = to[static_cast<std::size_t>(v)];
     if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) {
       ++report.degenerate_triangles;
+      RepairReport::note(report.sites.degenerate, centre(mesh.points, mesh.cells[t]));
       continue;
     }
     if (!seen.insert(canonical(c)).second) {
       ++report.duplicate_triangles;
+      RepairReport::note(report.sites.duplicate, centre(mesh.points, c));
       continue;
     }
     cells.push_back(c);
@@ -96,7 +103,7 @@ void weld(core::TriMesh& mesh, RepairReport& report) {
 
 //! Step 5: a vertex whose triangles form several fans (sheets touching at it) gets a copy per
 //! fan after the first (fans in the order of their lowest triangle), at the same place.
-int split_pinched_vertices(core::TriMesh& mesh) {
+int split_pinched_vertices(core::TriMesh& mesh, RepairReport::Sites& sites) {
   const std::size_t nv = mesh.points.size();
   std::vector<std::vector<int>> around(nv);
   for (std::size_t t = 0; t < mesh.cells.size(); ++t)
@@ -122,6 +129,7 @@ int split_pinched_vertices(core::TriMesh& mesh) {
         const int id = copy_of_fan.empty() ? static_cast<int>(v) : static_cast<int>(mesh.points.size());
         if (id != static_cast<int>(v)) {
           mesh.points.push_back(mesh.points[v]);
+          RepairReport::note(sites.split, mesh.points[v]);
           ++split;
         }
         it = copy_of_fan.emplace(root, id).first;
@@ -168,31 +176,47 @@ void keep_largest_component(core::TriMesh& mesh, RepairReport& report) {
 
 }  // namespace
 
-std::vector<std::string> RepairReport::lines() const {
+namespace {
+
+//! " (first at (x, y, z), (x, y, z))" for the places of one kind, or nothing.
+std::string at(const std::vector<core::Vec3>& places, int count) {
+  if (places.empty()) return {};
+  std::string s = count > static_cast<int>(places.size()) ? " (first at " : " (at ";
+  for (std::size_t i = 0; i < places.size(); ++i)
+    s += fmt::format("{}({:.6g}, {:.6g}, {:.6g})", i ? ", " : "", places[i].x(), places[i].y(), places[i].z());
+  return s + ")";
+}
+
+}  // namespace
+
+std::vector<std::string> RepairReport::lines(bool where) const {
   std::vector<std::string> out;
-  if (merged_vertices > 0)
-    out.push_back(
-        fmt::format("merged {} vertices at the same coordinates as another", merged_vertices));
-  if (degenerate_triangles > 0)
-    out.push_back(fmt::format("dropped {} triangles using a vertex twice", degenerate_triangles));
-  if (duplicate_triangles > 0)
-    out.push_back(fmt::format("dropped {} triangles repeating another", duplicate_triangles));
-  if (unused_vertices > 0)
-    out.push_back(fmt::format("dropped {} vertices of no triangle", unused_vertices));
-  if (dropped_components > 0)
-    out.push_back(fmt::format("kept the largest component: dropped {} other component(s), {} triangles",
-                              dropped_components, dropped_triangles));
-  if (split_vertices > 0)
-    out.push_back(fmt::format("split {} vertices where separate sheets touched (one copy per sheet)", split_vertices));
-  if (filled_holes > 0)
-    out.push_back(fmt::format("filled {} hole(s) with {} triangles", filled_holes, hole_triangles));
-  if (open_holes > 0)
-    out.push_back(fmt::format("left {} hole(s) open: larger than --max-hole", open_holes));
-  if (turned_triangles > 0)
-    out.push_back(fmt::format("turned {} triangles to face consistently and outward", turned_triangles));
-  if (wrapped)
-    out.push_back(fmt::format("replaced the surface by its alpha wrap ({} triangles; alpha {:.4g}, offset {:.4g})",
-                              wrap_triangles, wrap_alpha, wrap_offset));
+  // One line per kind that happened; with `where`, followed by its first places.
+  const auto add = [&](int count, std::string line, const std::vector<core::Vec3>& places) {
+    if (count > 0) out.push_back(where ? line + at(places, count) : std::move(line));
+  };
+  add(merged_vertices, fmt::format("merged {} vertices at the same coordinates as another", merged_vertices),
+      sites.merged);
+  add(degenerate_triangles, fmt::format("dropped {} triangles using a vertex twice", degenerate_triangles),
+      sites.degenerate);
+  add(duplicate_triangles, fmt::format("dropped {} triangles repeating another", duplicate_triangles),
+      sites.duplicate);
+  add(unused_vertices, fmt::format("dropped {} vertices of no triangle", unused_vertices), {});
+  add(dropped_components,
+      fmt::format("kept the largest component: dropped {} other component(s), {} triangles", dropped_components,
+                  dropped_triangles),
+      {});
+  add(split_vertices,
+      fmt::format("split {} vertices where separate sheets touched (one copy per sheet)", split_vertices),
+      sites.split);
+  add(filled_holes, fmt::format("filled {} hole(s) with {} triangles", filled_holes, hole_triangles), sites.filled);
+  add(open_holes, fmt::format("left {} hole(s) open: larger than --max-hole", open_holes), sites.open);
+  add(turned_triangles, fmt::format("turned {} triangles to face consistently and outward", turned_triangles),
+      sites.turned);
+  add(wrapped ? 1 : 0,
+      fmt::format("replaced the surface by its alpha wrap ({} triangles; alpha {:.4g}, offset {:.4g})", wrap_triangles,
+                  wrap_alpha, wrap_offset),
+      {});
   return out;
 }
 
@@ -207,12 +231,15 @@ RepairReport repair_surface(core::TriMesh& mesh, const RepairOptions& options) {
     return report;
   }
   if (options.largest_component) keep_largest_component(mesh, report);
-  report.split_vertices = split_pinched_vertices(mesh);
+  report.split_vertices = split_pinched_vertices(mesh, report.sites);
   if (options.fill_holes) {
     detail::fill_holes(mesh, options.max_hole_edges, report);
     if (report.filled_holes > 0) mesh.labels.clear();
   }
+  const std::vector<core::Tri> before = mesh.cells;
   report.turned_triangles = detail::orient_to_bound_volume(mesh);
+  for (std::size_t t = 0; t < before.size() && report.turned_triangles > 0; ++t)
+    if (mesh.cells[t] != before[t]) RepairReport::note(report.sites.turned, centre(mesh.points, before[t]));
   return report;
 }
 

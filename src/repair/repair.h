@@ -28,6 +28,7 @@
 
 #include "core/types.h"
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -61,13 +62,25 @@ struct RepairReport {
   int wrap_triangles = 0;        //!< triangles of the wrap
   double wrap_alpha = 0.0, wrap_offset = 0.0;  //!< in model units
 
+  //! Where the changes are: the first kMaxSites places of each kind, in model coordinates (a
+  //! vertex's position, a triangle's or a hole's centre), so a person can find them.
+  static constexpr std::size_t kMaxSites = 3;
+  struct Sites {
+    std::vector<core::Vec3> merged, degenerate, duplicate, split, turned, filled, open;
+  } sites;
+  //! Add `p` to `list` unless it holds it already or holds kMaxSites places.
+  static void note(std::vector<core::Vec3>& list, const core::Vec3& p) {
+    if (list.size() < kMaxSites && std::find(list.begin(), list.end(), p) == list.end()) list.push_back(p);
+  }
+
   [[nodiscard]] bool changed() const {
     return merged_vertices + degenerate_triangles + duplicate_triangles + unused_vertices + split_vertices +
                turned_triangles + dropped_components + filled_holes >
            0 || wrapped;
   }
-  //! One line per kind of change, e.g. "merged 24 vertices at equal coordinates".
-  [[nodiscard]] std::vector<std::string> lines() const;
+  //! One line per kind of change, e.g. "merged 24 vertices at equal coordinates"; with
+  //! `where`, each line ends with the first few places (as `info` prints them).
+  [[nodiscard]] std::vector<std::string> lines(bool where = false) const;
 };
 
 //! Apply the default repairs above to `mesh`, then those `options` asks for (its labels, if

@@ -74,6 +74,16 @@ AlignOptions next_step_options(SimplifyStep next, const core::PolycubeMap& map, 
   return align;
 }
 
+//! The map with its polycube moved so that its bounding box starts at the origin. The lattice
+//! the corners are aligned on is anchored there, on the shape, not at the origin of whatever
+//! coordinates the model came in: a model moved by 1e7 rounds its corners as it does in place.
+core::PolycubeMap anchored_at_origin(const core::PolycubeMap& map) {
+  core::PolycubeMap out = map;
+  const core::Vec3 lo = core::bounding_box(map.polycube).min;
+  for (core::Vec3& p : out.polycube) p -= lo;
+  return out;
+}
+
 }  // namespace
 
 const char* step_name(SimplifyStep step) {
@@ -86,10 +96,11 @@ const char* step_name(SimplifyStep step) {
   return "none";
 }
 
-SimplifyResult simplify_map(const core::PolycubeMap& map, const SimplifyOptions& options) {
+SimplifyResult simplify_map(const core::PolycubeMap& input, const SimplifyOptions& options) {
   SimplifyResult r;
   core::Stopwatch t;
-  structure::validate_map(map);
+  structure::validate_map(input);
+  const core::PolycubeMap map = anchored_at_origin(input);
   r.seconds_validate = t.seconds();
   t.restart();
   const auto s = structure::extract_structure(map);

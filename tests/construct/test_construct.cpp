@@ -23,6 +23,8 @@
 #include <Eigen/Geometry>
 
 #include <filesystem>
+#include <set>
+#include <map>
 
 namespace polycube {
 namespace {
@@ -423,6 +425,45 @@ TEST(Pipeline, RepairFixesAPerturbedLabeling) {
   EXPECT_GT(r.initial_defects, 0);
   EXPECT_TRUE(test::validate_labeling(s, r.labels).valid());
   EXPECT_TRUE(r.valid());
+}
+
+//! The corner tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1), each face split into 4^levels.
+core::TriMesh subdivided_corner_tetrahedron(int levels) {
+  core::TriMesh m;
+  m.points = {core::Vec3(0, 0, 0), core::Vec3(1, 0, 0), core::Vec3(0, 1, 0), core::Vec3(0, 0, 1)};
+  m.cells = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  for (int l = 0; l < levels; ++l) {
+    std::map<std::pair<int, int>, int> middle;
+    const auto mid = [&](int a, int b) {
+      const auto [it, fresh] = middle.emplace(std::minmax(a, b), m.num_points());
+      if (fresh) m.points.push_back(0.5 * (m.points[a] + m.points[b]));
+      return it->second;
+    };
+    std::vector<core::Tri> next;
+    for (const core::Tri& t : m.cells) {
+      const int ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
+      next.insert(next.end(), {{t[0], ab, ca}, {ab, t[1], bc}, {ca, bc, t[2]}, {ab, bc, ca}});
+    }
+    m.cells = std::move(next);
+  }
+  return m;
+}
+
+std::set<int> labels_used(const std::vector<int>& labels) { return {labels.begin(), labels.end()}; }
+
+// Every closed polycube has a chart facing each of the six directions, so the repair never
+// takes a label's last triangles. Before it did, on a tetrahedron: its slanted face ties three
+// axes, the moves that merged charts each removed a defect, and it ended with one chart of all
+// 1,024 triangles (1 defect, no way back).
+TEST(Pipeline, RepairNeverTakesADirectionsLastTriangles) {
+  const core::TriMesh s = subdivided_corner_tetrahedron(4);
+  const auto labeling = construct::graph_cut_labeling(s);
+  const std::set<int> before = labels_used(labeling.labels);
+  ASSERT_GE(before.size(), 4u);  // the three axis-aligned faces and the slanted one
+  const auto r = construct::repair_labeling(s, labeling.labels);
+  const std::set<int> after = labels_used(r.labels);
+  for (const int l : before) EXPECT_TRUE(after.count(l)) << construct::label_name(l) << " was dropped";
+  EXPECT_GE(construct::check_labeling(s, r.labels).layout.num_charts(), 4);
 }
 
 // --- shared models ----------------------------------------------------------------------------

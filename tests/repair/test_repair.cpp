@@ -15,6 +15,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 
 namespace polycube {
@@ -65,6 +66,43 @@ TEST(Repair, ATriangleTurnedTheOtherWayIsNotARepeat) {
   EXPECT_EQ(m.cells.size(), n);  // not the repairs' to judge: the closed-surface check refuses it
 }
 
+// Each change is located: the first places of each kind (a vertex, a triangle's centre), so
+// `info` can say where to look. Placed exactly: the centres are of the triangles as read.
+TEST(Repair, EachRepairSaysWhereItWas) {
+  core::TriMesh m = test::make_box(1, 1, 1, 1);
+  const core::Tri third = m.cells[3];
+  m.cells.push_back({0, 0, 1});
+  m.cells.push_back({third[1], third[2], third[0]});
+  const core::Vec3 degenerate = (2.0 * m.points[0] + m.points[1]) / 3.0;
+  const core::Vec3 repeated = (m.points[third[0]] + m.points[third[1]] + m.points[third[2]]) / 3.0;
+  const repair::RepairReport r = repair::repair_surface(m);
+  ASSERT_EQ(r.sites.degenerate.size(), 1u);
+  EXPECT_EQ(r.sites.degenerate[0], degenerate);
+  ASSERT_EQ(r.sites.duplicate.size(), 1u);
+  EXPECT_EQ(r.sites.duplicate[0], repeated);
+  const std::vector<std::string> where = r.lines(true);
+  ASSERT_EQ(where.size(), 2u);
+  EXPECT_EQ(where[0], fmt::format("dropped 1 triangles using a vertex twice (at ({:.6g}, {:.6g}, {:.6g}))",
+                                  degenerate.x(), degenerate.y(), degenerate.z()));
+  EXPECT_EQ(r.lines(false)[0], "dropped 1 triangles using a vertex twice");
+
+  // Many of a kind: the first three, said to be the first.
+  const core::TriMesh box = test::make_box(1, 2, 3, 2);
+  core::TriMesh soup = test::soup_of(box);
+  const repair::RepairReport s = repair::repair_surface(soup);
+  EXPECT_EQ(s.sites.merged.size(), repair::RepairReport::kMaxSites);
+  for (const core::Vec3& p : s.sites.merged)
+    EXPECT_NE(std::find(box.points.begin(), box.points.end(), p), box.points.end());
+  EXPECT_NE(s.lines(true)[0].find(" (first at ("), std::string::npos) << s.lines(true)[0];
+
+  // Two boxes touching at a corner: the split vertex is that corner.
+  core::TriMesh pinched =
+      test::join(test::make_box(1, 1, 1, 2), test::make_box(1, 1, 1, 2, core::Vec3(1, 1, 1)));
+  const repair::RepairReport p = repair::repair_surface(pinched);
+  ASSERT_EQ(p.sites.split.size(), 1u);
+  EXPECT_EQ(p.sites.split[0], core::Vec3(1, 1, 1));
+}
+
 TEST(Repair, EverySharedSurfaceNeedsNothing) {
   const fs::path dir = fs::path(POLYCUBE_DATA_DIR) / "surface";
   if (!fs::exists(dir)) GTEST_SKIP() << dir << " not found";
@@ -94,9 +132,16 @@ TEST(RepairCli, InfoReportsTheRepairsAndConstructMapsASoup) {
   ASSERT_EQ(info.exit_code, 0) << info.err;
   const nlohmann::json j = nlohmann::json::parse(info.out);
   ASSERT_EQ(j["repairs"].size(), 1u);
-  EXPECT_EQ(j["repairs"][0], fmt::format("merged {} vertices at the same coordinates as another",
-                                         3 * box.cells.size() - box.points.size()));
+  EXPECT_EQ(j["repairs"][0].get<std::string>().rfind(
+                fmt::format("merged {} vertices at the same coordinates as another (first at (",
+                            3 * box.cells.size() - box.points.size()),
+                0),
+            0u)
+      << j["repairs"][0];
   EXPECT_TRUE(j["surface"]["closed"].get<bool>());
+  // Where: info names the first places (the test above checks them exactly).
+  const auto text = test::run_cli("info " + (dir / "soup.obj").string());
+  EXPECT_NE(text.out.find("as another (first at ("), std::string::npos) << text.out;
   const auto r = test::run_cli(
       fmt::format("construct {} -o {}", (dir / "soup.obj").string(), (dir / "map").string()));
   ASSERT_EQ(r.exit_code, 0) << r.err;
