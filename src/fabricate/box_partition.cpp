@@ -306,7 +306,7 @@ void index_boxes(const OccupancyGrid& g, BoxPartition& p) {
 OccupancyGrid occupancy_grid(const core::PolycubeMap& map, double tolerance) {
   if (map.tets.empty()) throw core::InputError("box partition: the map has no tets");
   const structure::PolycubeStructure s = structure::extract_structure(map);
-  const double absolute = tolerance * core::bounding_box(map.polycube).extent().norm();
+  const double absolute = tolerance * core::bounding_box(map.polycube).diagonal();
   const mesh::TetLocator locator(map.tets, map.polycube, absolute);
   const mesh::Arrangement arr = mesh::build_arrangement(s, locator, absolute, kMaxCells);
   OccupancyGrid g;

@@ -5,7 +5,7 @@ namespace polycube::fabricate {
 
 ToModel::ToModel(const core::PolycubeMap& map, double tolerance)
     : map_(map),
-      locator_(map.tets, map.polycube, tolerance * core::bounding_box(map.polycube).extent().norm()) {}
+      locator_(map.tets, map.polycube, tolerance * core::bounding_box(map.polycube).diagonal()) {}
 
 core::Vec3 ToModel::operator()(const core::Vec3& q, bool* located) const {
   bool inside = false;

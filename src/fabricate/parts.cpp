@@ -291,7 +291,7 @@ Part finish(int box, ExactMesh piece) {
 BoxOf box_lookup(const core::PolycubeMap& map, const OccupancyGrid& grid,
                  const BoxPartition& partition, double tolerance) {
   auto locator = std::make_shared<mesh::TetLocator>(
-      map.tets, map.model, tolerance * core::bounding_box(map.model).extent().norm());
+      map.tets, map.model, tolerance * core::bounding_box(map.model).diagonal());
   return [locator, &map, &grid, &partition](const Vec3& x) {
     bool located = false;
     const Vec3 q =

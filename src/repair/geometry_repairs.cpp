@@ -61,10 +61,10 @@ bool one_outward_shell(const core::TriMesh& m, const core::SurfaceReport& r) {
 
 }  // namespace
 
-int orient_to_bound_volume(core::TriMesh& mesh) {
+void orient_to_bound_volume(core::TriMesh& mesh, RepairReport& report) {
   const core::SurfaceReport r = core::analyze_surface(mesh);
-  if (!r.manifold || !r.orientable) return 0;  // the check after the repairs says why
-  if (r.consistently_oriented && (!r.closed || one_outward_shell(mesh, r))) return 0;
+  if (!r.manifold || !r.orientable) return;  // the check after the repairs says why
+  if (r.consistently_oriented && (!r.closed || one_outward_shell(mesh, r))) return;
   const std::vector<core::Tri> before = mesh.cells;
   if (!r.consistently_oriented) core::orient_consistently(mesh);
   if (r.closed) {
@@ -82,9 +82,11 @@ int orient_to_bound_volume(core::TriMesh& mesh) {
       }
     }
   }
-  int turned = 0;
-  for (std::size_t i = 0; i < before.size(); ++i) turned += mesh.cells[i] != before[i] ? 1 : 0;
-  return turned;
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    if (mesh.cells[i] == before[i]) continue;
+    ++report.turned_triangles;
+    RepairReport::note(report.sites.turned, centre(mesh.points, before[i]));
+  }
 }
 
 void fill_holes(core::TriMesh& mesh, int max_edges, RepairReport& report) {

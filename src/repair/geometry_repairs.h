@@ -8,9 +8,15 @@
 
 namespace polycube::repair::detail {
 
+//! The centre of triangle `t`: where a report places a repair of it.
+inline core::Vec3 centre(const std::vector<core::Vec3>& points, const core::Tri& t) {
+  return (points[t[0]] + points[t[1]] + points[t[2]]) / 3.0;
+}
+
 //! Turn the triangles of a manifold, orientable surface so that they are consistent and, where
-//! closed, bound a volume (nested shells alternate). \return the number of triangles turned
-int orient_to_bound_volume(core::TriMesh& mesh);
+//! closed, bound a volume (nested shells alternate); the triangles turned are counted, and the
+//! first placed, in `report`.
+void orient_to_bound_volume(core::TriMesh& mesh, RepairReport& report);
 
 //! Close the holes of at most `max_edges` boundary edges with refined, faired patches.
 void fill_holes(core::TriMesh& mesh, int max_edges, RepairReport& report);

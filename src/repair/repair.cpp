@@ -19,10 +19,6 @@ namespace polycube::repair {
 
 namespace {
 
-core::Vec3 centre(const std::vector<core::Vec3>& points, const core::Tri& t) {
-  return (points[t[0]] + points[t[1]] + points[t[2]]) / 3.0;
-}
-
 //! Maps every vertex to the first vertex (in file order) at exactly its coordinates.
 std::vector<int> first_at_same_point(const std::vector<core::Vec3>& points, RepairReport& report) {
   std::vector<int> order(points.size());
@@ -71,12 +67,12 @@ void weld(core::TriMesh& mesh, RepairReport& report) {
     for (int& v : c) v = to[static_cast<std::size_t>(v)];
     if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) {
       ++report.degenerate_triangles;
-      RepairReport::note(report.sites.degenerate, centre(mesh.points, mesh.cells[t]));
+      RepairReport::note(report.sites.degenerate, detail::centre(mesh.points, mesh.cells[t]));
       continue;
     }
     if (!seen.insert(canonical(c)).second) {
       ++report.duplicate_triangles;
-      RepairReport::note(report.sites.duplicate, centre(mesh.points, c));
+      RepairReport::note(report.sites.duplicate, detail::centre(mesh.points, c));
       continue;
     }
     cells.push_back(c);
@@ -225,7 +221,7 @@ RepairReport repair_surface(core::TriMesh& mesh, const RepairOptions& options) {
   weld(mesh, report);
   if (options.wrap) {
     // The wrap replaces the surface: nothing else is needed, and it works on soups.
-    const double diagonal = core::bounding_box(mesh.points).extent().norm();
+    const double diagonal = core::bounding_box(mesh.points).diagonal();
     detail::alpha_wrap(mesh, options.wrap_alpha * diagonal, options.wrap_offset * diagonal, report);
     mesh.labels.clear();
     return report;
@@ -236,10 +232,7 @@ RepairReport repair_surface(core::TriMesh& mesh, const RepairOptions& options) {
     detail::fill_holes(mesh, options.max_hole_edges, report);
     if (report.filled_holes > 0) mesh.labels.clear();
   }
-  const std::vector<core::Tri> before = mesh.cells;
-  report.turned_triangles = detail::orient_to_bound_volume(mesh);
-  for (std::size_t t = 0; t < before.size() && report.turned_triangles > 0; ++t)
-    if (mesh.cells[t] != before[t]) RepairReport::note(report.sites.turned, centre(mesh.points, before[t]));
+  detail::orient_to_bound_volume(mesh, report);
   return report;
 }
 
