@@ -114,15 +114,16 @@ Choice choose_selectively(const core::HexMesh& mesh, const PadCliOptions& o, nlo
                     {"edge_turns", sel.edge_turns},   {"vertex_turns", sel.vertex_turns},
                     {"objective", sel.objective},     {"optimal", sel.optimal},
                     {"gap", sel.gap},                 {"variables", sel.variables},
-                    {"rows", sel.rows},               {"seconds", sel.seconds}};
+                    {"rows", sel.rows},               {"solver", sel.solver},
+                    {"seconds", sel.seconds}};
   Choice c{sel.facets, "selective", ""};
   c.text = fmt::format(
       "  analysis: {} boundary hexes below SJ {}, {} distorted edges, |HF| = {} ({:.2f} s)\n"
-      "  binary problem: |PF| = {}, {} edge and {} vertex turns, {} ({} variables, {} rows, {:.2f} s)\n",
+      "  binary problem: |PF| = {}, {} edge and {} vertex turns, {} ({} variables, {} rows, {}, {:.2f} s)\n",
       a.analysed_hexes, o.analysis.threshold, a.distorted_edges, a.hard_facets, a.seconds, sel.selected,
       sel.edge_turns, sel.vertex_turns,
       sel.optimal ? std::string("optimal") : fmt::format("not proven optimal, gap {:.1f}%", 100.0 * sel.gap),
-      sel.variables, sel.rows, sel.seconds);
+      sel.variables, sel.rows, sel.solver, sel.seconds);
   return c;
 }
 

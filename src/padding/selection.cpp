@@ -238,6 +238,7 @@ Selection select_facets_to_pad(const core::HexMesh& mesh, const std::vector<std:
     Selection none;
     none.facets.assign(tp.t.num_faces(), 0);
     none.optimal = true;
+    none.solver = "none (the empty set)";
     none.seconds = clock.seconds();
     return none;
   }
@@ -267,6 +268,7 @@ Selection select_facets_to_pad(const core::HexMesh& mesh, const std::vector<std:
   s.objective = r.objective;
   s.optimal = r.status == solve::MilpStatus::Optimal;
   s.gap = s.optimal || r.objective == 0 ? 0.0 : std::max(0.0, (r.objective - r.bound) / std::abs(r.objective));
+  s.solver = r.solver;
   s.variables = m.program.num_variables();
   s.rows = m.program.num_rows();
   s.seconds = clock.seconds();

@@ -64,6 +64,7 @@ struct Selection {
   bool optimal = false;              //!< proven optimal (else stopped at the time limit)
   double gap = 0;                    //!< relative gap to the best bound when not proven optimal
   int variables = 0, rows = 0;       //!< size of the program given to CBC
+  std::string solver;                //!< what proved (or found) it: solve::MilpResult::solver
   double seconds = 0;                //!< building and solving
 };
 

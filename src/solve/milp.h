@@ -6,7 +6,8 @@
 //! A program is: minimize c·x subject to row_lower <= A·x <= row_upper and
 //! lower <= x <= upper, with some variables integer. Without integer variables it is solved as
 //! an LP with CLP's dual simplex (a basic, i.e. vertex, solution is returned); with integer
-//! variables by branch and cut with CBC.
+//! variables its LP relaxation is solved first (an integral optimum of the relaxation is the
+//! program's optimum), then, when that is fractional, by branch and cut with CBC.
 
 #include <limits>
 #include <string>
@@ -45,7 +46,7 @@ struct LinearProgram {
 
 //! Options of solve_program().
 struct MilpOptions {
-  double time_limit = 0.0;  //!< seconds for branch and cut (0: none); ignored for LPs
+  double time_limit = 0.0;  //!< seconds for the relaxation and branch and cut (0: none); ignored for LPs
   double relative_gap = 0.0;  //!< stop branch and cut at this relative optimality gap
   //! A feasible solution to start branch and cut from (#x values; empty: none). Checked: an
   //! infeasible start is ignored. With a time limit, the result is never worse than the start.
@@ -62,7 +63,9 @@ struct MilpResult {
   double objective = 0.0;  //!< c·x
   //! Best lower bound on the optimum that branch and cut proved (= objective when Optimal).
   double bound = 0.0;
-  std::string solver;      //!< "CLP dual simplex" or "CBC branch and cut"
+  //! "CLP dual simplex", "CLP dual simplex (integral LP relaxation)", "CLP dual simplex (LP
+  //! relaxation)" (an infeasible relaxation) or "CBC branch and cut"
+  std::string solver;
 };
 
 //! Solve the program. Never throws for infeasible or unbounded programs (see status).

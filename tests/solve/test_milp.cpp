@@ -250,6 +250,51 @@ TEST(Milp, StoppedRunReturnsAFeasibleIncumbent) {
   EXPECT_GE(r.objective, 4.0 - 1e-6);
 }
 
+TEST(Milp, AnIntegralRelaxationIsTheOptimumWithoutBranching) {
+  // Assignment of 3 workers to 3 jobs (rows and columns sum to 1): the constraint matrix is
+  // totally unimodular, so the relaxation's vertex optimum is integral and no branching is
+  // needed. Costs: the six assignments cost 6, 6, 5, 7, 9, 11; the unique optimum is
+  // worker 0 -> job 1, 1 -> 0, 2 -> 2 at 1 + 2 + 2 = 5.
+  const double cost[3][3] = {{4, 1, 3}, {2, 0, 5}, {3, 2, 2}};
+  LinearProgram p;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) p.add_variable(cost[i][j], 0.0, 1.0, true);
+  for (int i = 0; i < 3; ++i) {
+    p.add_row({3 * i, 3 * i + 1, 3 * i + 2}, {1, 1, 1}, 1.0, 1.0);
+    p.add_row({i, 3 + i, 6 + i}, {1, 1, 1}, 1.0, 1.0);
+  }
+  const MilpResult r = solve_program(p);
+  EXPECT_EQ(r.solver, "CLP dual simplex (integral LP relaxation)");
+  expect_optimum(p, r, {0, 1, 0, 1, 0, 0, 0, 0, 1}, 5.0);
+  EXPECT_DOUBLE_EQ(r.bound, r.objective);
+}
+
+TEST(Milp, AFeasibleStartIsKeptUnderATimeLimitAndAnInfeasibleOneIgnored) {
+  // x = 0 with slacks s = b is feasible, cost sum b: under a limit too short to search, the
+  // result is that start or better. A start that breaks a row is ignored: the knapsack's
+  // three items together weigh 60 > 50, and the optimum 220 is still found.
+  const LinearProgram split = market_split(4, 40, 11);
+  std::vector<double> start(static_cast<std::size_t>(split.num_variables()), 0.0);
+  double start_cost = 0.0;
+  for (std::size_t i = 0; i < split.rows.size(); ++i) {
+    start[static_cast<std::size_t>(split.rows[i].columns[40])] = split.rows[i].lower;  // s_i = b_i
+    start_cost += split.rows[i].lower;
+  }
+  ASSERT_LE(infeasibility(split, start), 1e-9);
+  MilpOptions o;
+  o.time_limit = 0.01;
+  o.start = start;
+  const MilpResult stopped = solve_program(split, o);
+  ASSERT_EQ(static_cast<int>(stopped.x.size()), split.num_variables()) << status_name(stopped.status);
+  EXPECT_LE(infeasibility(split, stopped.x), 1e-6);
+  EXPECT_LE(stopped.objective, start_cost + 1e-9);
+
+  const LinearProgram p = knapsack(true);
+  MilpOptions bad;
+  bad.start = {1.0, 1.0, 1.0};
+  expect_optimum(p, solve_program(p, bad), {0.0, 1.0, 1.0}, -220.0);
+}
+
 // --- errors and names -------------------------------------------------------------------------
 
 TEST(Milp, InconsistentSizesAndColumnsThrow) {
