@@ -96,6 +96,14 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
                    {"hard_facets", known(r.padding_hard_facets)},
                    {"plan_seconds", known(r.padding_plan_seconds)},
                    {"plan_optimal", r.padding_plan_optimal},
+                   {"plan_gap", known(r.padding_plan_gap)},
+                   {"plan_solver", r.padding_plan_solver.empty() ? nlohmann::json(nullptr)
+                                                                 : nlohmann::json(r.padding_plan_solver)},
+                   {"analysis_seconds", known(r.padding_analysis_seconds)},
+                   {"solve_seconds", known(r.padding_solve_seconds)},
+                   {"selected_facets", known(r.padding_selected_facets)},
+                   {"edge_turns", known(r.padding_edge_turns)},
+                   {"vertex_turns", known(r.padding_vertex_turns)},
                    {"optimize_seconds", known(r.padding_optimize_seconds)}}},
       {"fabricate",
        {{"boxes", known(r.part_boxes)},
@@ -157,9 +165,14 @@ std::string summary_table(const pipeline::RunResult& r) {
       what = r.padding_added < 0 ? r.padding
                                  : fmt::format("{}: {}{}", r.padding, padding_summary(r),
                                                r.padding_plan_seconds >= 0
-                                                   ? fmt::format(", |HF| {}, plan {:.1f} s{}", r.padding_hard_facets,
+                                                   ? fmt::format(", |HF| {}, |PF| {}, {} edge and {} vertex turns, plan {:.1f} s{}",
+                                                                 r.padding_hard_facets, r.padding_selected_facets,
+                                                                 r.padding_edge_turns, r.padding_vertex_turns,
                                                                  r.padding_plan_seconds,
-                                                                 r.padding_plan_optimal ? "" : " (not proven optimal)")
+                                                                 r.padding_plan_optimal
+                                                                     ? std::string()
+                                                                     : fmt::format(" (not proven optimal, gap {:.1f} %)",
+                                                                                   100.0 * r.padding_plan_gap))
                                                    : std::string());
     else if (s.name == "quality")
       what = fmt::format("mSJ {} aSJ {}, {} inverted, #D {}, Hausdorff {} of the bbox diagonal", figure(r.msj),

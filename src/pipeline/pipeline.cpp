@@ -161,6 +161,13 @@ std::vector<std::uint8_t> padding_facets(const core::HexMesh& hex, padding::Padd
   r.padding_hard_facets = plan.analysis.hard_facets;
   r.padding_plan_seconds = plan.analysis.seconds + plan.selection.seconds;
   r.padding_plan_optimal = plan.selection.optimal;
+  r.padding_plan_gap = plan.selection.gap;
+  r.padding_plan_solver = plan.selection.solver;
+  r.padding_analysis_seconds = plan.analysis.seconds;
+  r.padding_solve_seconds = plan.selection.seconds;
+  r.padding_selected_facets = plan.selection.selected;
+  r.padding_edge_turns = plan.selection.edge_turns;
+  r.padding_vertex_turns = plan.selection.vertex_turns;
   if (plan.selection.selected == 0) return {};
   return plan.selection.facets;
 }

@@ -133,6 +133,11 @@ struct RunResult {
   int padding_hard_facets = -1;        //!< selective: |HF|
   double padding_plan_seconds = -1;    //!< selective: mapping analysis + binary problem
   bool padding_plan_optimal = false;   //!< selective: the binary problem was solved to optimality
+  double padding_plan_gap = -1;        //!< selective: relative gap to the best bound (0 when optimal)
+  std::string padding_plan_solver;     //!< selective: what solved the binary problem (solve/milp.h)
+  double padding_analysis_seconds = -1, padding_solve_seconds = -1;  //!< selective: the plan's two steps
+  int padding_selected_facets = -1;    //!< selective: |PF|
+  int padding_edge_turns = -1, padding_vertex_turns = -1;  //!< selective: turns of the new layer
   int padding_added = -1;              //!< hexes of the new layer
   int singular_vertices_before = -1, singular_edges_before = -1;  //!< #Sv, #Se before padding
   int singular_vertices_after = -1, singular_edges_after = -1;    //!< ... after

@@ -179,6 +179,10 @@ TEST_F(RunBox, ReportRecordsEveryStageAndListsExactlyTheFilesWritten) {
   // Selective padding by default: a box's map does not distort it, so nothing is padded.
   const std::vector<std::string> order{"input", "construct", "simplify", "hexmesh", "optimize", "pad", "quality"};
   EXPECT_EQ(j["padding"]["applied"], "none (nothing to pad)");
+  EXPECT_EQ(j["padding"]["hard_facets"].get<int>(), 0);
+  EXPECT_EQ(j["padding"]["selected_facets"].get<int>(), 0);
+  EXPECT_EQ(j["padding"]["plan_solver"], "none (the empty set)");
+  EXPECT_TRUE(j["padding"]["plan_optimal"].get<bool>());
   ASSERT_EQ(j["stages"].size(), order.size());
   for (std::size_t i = 0; i < order.size(); ++i) {
     EXPECT_EQ(j["stages"][i]["stage"], order[i]);
