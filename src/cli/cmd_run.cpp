@@ -64,6 +64,11 @@ nlohmann::json report_head(const RunCliOptions& o, const char* status) {
           {"input", o.input}};
 }
 
+//! Selective padding's plan: its two steps together (-1 when there was no plan).
+double plan_seconds(const pipeline::RunResult& r) {
+  return r.padding_analysis_seconds < 0 ? -1.0 : r.padding_analysis_seconds + r.padding_solve_seconds;
+}
+
 nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
   nlohmann::json stages = nlohmann::json::array();
   for (const auto& s : r.stages) stages.push_back({{"stage", s.name}, {"ok", s.ok}, {"seconds", s.seconds}});
@@ -94,7 +99,7 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
                    {"singular_edges_after", known(r.singular_edges_after)},
                    {"insert_seconds", known(r.padding_insert_seconds)},
                    {"hard_facets", known(r.padding_hard_facets)},
-                   {"plan_seconds", known(r.padding_plan_seconds)},
+                   {"plan_seconds", known(plan_seconds(r))},
                    {"plan_optimal", r.padding_plan_optimal},
                    {"plan_gap", known(r.padding_plan_gap)},
                    {"plan_solver", r.padding_plan_solver.empty() ? nlohmann::json(nullptr)
@@ -136,6 +141,16 @@ std::string padding_summary(const pipeline::RunResult& r) {
                      count(r.singular_edges_before), count(r.singular_edges_after));
 }
 
+//! ", |HF| .., |PF| .., turns, plan time (and gap)" after the pad line; empty without a plan.
+std::string plan_summary(const pipeline::RunResult& r) {
+  if (plan_seconds(r) < 0) return {};
+  return fmt::format(", |HF| {}, |PF| {}, {} edge and {} vertex turns, plan {:.1f} s{}", r.padding_hard_facets,
+                     r.padding_selected_facets, r.padding_edge_turns, r.padding_vertex_turns, plan_seconds(r),
+                     r.padding_plan_optimal
+                         ? std::string()
+                         : fmt::format(" (not proven optimal, gap {:.1f} %)", 100.0 * r.padding_plan_gap));
+}
+
 std::string summary_table(const pipeline::RunResult& r) {
   std::string t;
   t += "| stage | time (s) | result |\n|---|---:|---|\n";
@@ -163,17 +178,7 @@ std::string summary_table(const pipeline::RunResult& r) {
                                                                    : ", regridded: " + r.optimize_fallback);
     else if (s.name == "pad")
       what = r.padding_added < 0 ? r.padding
-                                 : fmt::format("{}: {}{}", r.padding, padding_summary(r),
-                                               r.padding_plan_seconds >= 0
-                                                   ? fmt::format(", |HF| {}, |PF| {}, {} edge and {} vertex turns, plan {:.1f} s{}",
-                                                                 r.padding_hard_facets, r.padding_selected_facets,
-                                                                 r.padding_edge_turns, r.padding_vertex_turns,
-                                                                 r.padding_plan_seconds,
-                                                                 r.padding_plan_optimal
-                                                                     ? std::string()
-                                                                     : fmt::format(" (not proven optimal, gap {:.1f} %)",
-                                                                                   100.0 * r.padding_plan_gap))
-                                                   : std::string());
+                                 : fmt::format("{}: {}{}", r.padding, padding_summary(r), plan_summary(r));
     else if (s.name == "quality")
       what = fmt::format("mSJ {} aSJ {}, {} inverted, #D {}, Hausdorff {} of the bbox diagonal", figure(r.msj),
                          figure(r.asj), count(r.inverted), count(r.final_domains),

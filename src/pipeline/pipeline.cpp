@@ -159,7 +159,6 @@ std::vector<std::uint8_t> padding_facets(const core::HexMesh& hex, padding::Padd
   const padding::SelectivePlan plan =
       padding::plan_selective_padding(hex, o.padding_analysis, o.padding_selection);
   r.padding_hard_facets = plan.analysis.hard_facets;
-  r.padding_plan_seconds = plan.analysis.seconds + plan.selection.seconds;
   r.padding_plan_optimal = plan.selection.optimal;
   r.padding_plan_gap = plan.selection.gap;
   r.padding_plan_solver = plan.selection.solver;

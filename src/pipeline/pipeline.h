@@ -131,7 +131,6 @@ struct RunResult {
   std::string padding = "none";
   double msj_unpadded = -2, msj_padded = -2;  //!< requested padding: mSJ before and after
   int padding_hard_facets = -1;        //!< selective: |HF|
-  double padding_plan_seconds = -1;    //!< selective: mapping analysis + binary problem
   bool padding_plan_optimal = false;   //!< selective: the binary problem was solved to optimality
   double padding_plan_gap = -1;        //!< selective: relative gap to the best bound (0 when optimal)
   std::string padding_plan_solver;     //!< selective: what solved the binary problem (solve/milp.h)
