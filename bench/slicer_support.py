@@ -9,7 +9,8 @@ chosen base). Every part is sliced by PrusaSlicer with support on at the same ov
 (150 mm by default: the shared models are in units a printer cannot resolve; one factor per
 model keeps its parts' ranks). Prints, per part, our support percentage and the filament
 PrusaSlicer extrudes as support; then Spearman's rho per model and over all the parts, and the
-parts where we say none is needed but PrusaSlicer prints some. Standard library only.
+parts where we say none is needed (no overhanging area, keel or tip) but PrusaSlicer prints
+some. Standard library only.
 """
 import argparse
 import json
@@ -108,7 +109,8 @@ def main():
                     print(f"{name} {p['file']}: no base, not sliced", file=sys.stderr)
                     continue
                 filament = slice_part(os.path.join(d, p["print_file"]), scale, work)
-                rows.append((name, p["file"], p["support_percent"], filament))
+                rows.append((name, p["file"], p["support_percent"], filament,
+                             p.get("needs_support", p["support_percent"] > 0)))
                 print(f"| {name} | {p['file']} | {p['support_percent']:.3f} | {filament:.1f} |",
                       flush=True)
     print()
@@ -117,7 +119,7 @@ def main():
         rho = spearman([r[2] for r in sel], [r[3] for r in sel]) if len(sel) > 2 else float("nan")
         print(f"{name}: {len(sel)} parts, rho {rho:.3f}")
     print(f"all: {len(rows)} parts, rho {spearman([r[2] for r in rows], [r[3] for r in rows]):.3f}")
-    missed = [r for r in rows if r[2] == 0 and r[3] > 0]
+    missed = [r for r in rows if not r[4] and r[3] > 0]
     print(f"parts we say need no support that PrusaSlicer supports: {len(missed)}"
           + "".join(f"\n  {r[0]} {r[1]}: {r[3]:.1f} mm of filament" for r in missed))
 

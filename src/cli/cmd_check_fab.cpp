@@ -72,13 +72,17 @@ void run_check_fab(CheckFabOptions o) {
   text += "  side  normal                       area       support %  3-axis unreachable %\n";
   for (std::size_t s = 0; s < part.sides.size(); ++s) {
     const core::Vec3& n = part.sides[s].normal;
-    sides.push_back({{"normal", vec(n)},
-                     {"area", part.sides[s].area},
-                     {"support_percent", 100 * print.sides[s].support_fraction},
-                     {"three_axis_unreachable_percent", 100 * mill.three_axis[s]}});
-    text += fmt::format("  {:4d}  ({:7.4f} {:7.4f} {:7.4f})  {:11.5g}  {:9.2f}  {:9.2f}\n", s,
-                        n.x(), n.y(), n.z(), part.sides[s].area,
-                        100 * print.sides[s].support_fraction, 100 * mill.three_axis[s]);
+    const fabricate::Standing& on = print.sides[s];
+    nlohmann::json side = {{"normal", vec(n)},
+                           {"area", part.sides[s].area},
+                           {"three_axis_unreachable_percent", 100 * mill.three_axis[s]}};
+    side.update(pipeline::support_json(on));
+    sides.push_back(side);
+    const std::string keels =
+        on.keels > 0 || on.tips > 0 ? "  also " + fabricate::describe_keels_and_tips(on) : "";
+    text += fmt::format("  {:4d}  ({:7.4f} {:7.4f} {:7.4f})  {:11.5g}  {:9.2f}  {:9.2f}{}\n", s,
+                        n.x(), n.y(), n.z(), part.sides[s].area, 100 * on.support_fraction,
+                        100 * mill.three_axis[s], keels);
   }
   const fabricate::Axis& axis = mill.four_axis.axis;
   text += fmt::format(
@@ -108,7 +112,7 @@ void run_check_fab(CheckFabOptions o) {
     core::MeshData d = core::to_mesh_data(part.mesh);
     const std::vector<std::uint8_t> over =
         print.best < 0 ? std::vector<std::uint8_t>(part.mesh.cells.size(), 0)
-                       : fabricate::overhanging(
+                       : fabricate::support_marks(
                              part.mesh, part.sides[static_cast<std::size_t>(print.best)].normal,
                              o.print.overhang_degrees);
     core::Field side{"flat_side", {}}, overhang{"overhang", {}}, three{"not_3axis", {}},
@@ -151,7 +155,8 @@ void register_check_fab(CLI::App& app) {
       ->capture_default_str()
       ->check(cli::in_range(1, 3600));
   sub->add_option("--vtk", opts->vtk,
-                  "Write the surface with per-triangle fields flat_side, overhang, not_3axis, "
+                  "Write the surface with per-triangle fields flat_side, overhang (1 an "
+                  "overhanging face, 2 along a keel or at a tip, on the best side), not_3axis, "
                   "not_4axis (ParaView)");
   sub->callback([opts] { run_check_fab(*opts); });
 }

@@ -9,12 +9,19 @@
 //! from the vertical). Triangles lying on the bed (the base, and any other down-facing triangle
 //! at the bed's height) need none. The support fraction is the overhanging area over the part's
 //! whole surface area.
+//!
+//! Beyond the thesis's area: a slicer also supports features that have no area. A keel (a convex
+//! edge between two faces each steep enough, rising less steeply than the printer's angle) and a
+//! tip pointing down (a vertex lower than its neighbours, the part above it) have nothing within
+//! the printer's angle below them. A part with either needs support although its fraction is 0;
+//! `Standing::needs_support()` says so.
 
 #include "core/types.h"
 #include "fabricate/chamber.h"
 #include "fabricate/parts.h"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace polycube::fabricate {
@@ -30,17 +37,44 @@ struct Standing {
   double overhang_area = 0.0;              //!< model units²
   double support_fraction = 0.0;           //!< overhang_area / the part's surface area
   bool fits = true;                        //!< fits the chamber standing so
+  int keels = 0;                           //!< keel edges with nothing below (see keels_and_tips)
+  double keel_length = 0.0;                //!< their length, model units
+  int tips = 0;                            //!< tips pointing down above the bed
+
+  //! Any support at all: overhanging area, a keel or a tip.
+  [[nodiscard]] bool needs_support() const { return overhang_area > 0.0 || keels > 0 || tips > 0; }
 };
 
 //! Per-triangle overhang on a base: 1 overhanging, 0 not (bed triangles included).
 std::vector<std::uint8_t> overhanging(const core::TriMesh& mesh, const core::Vec3& down,
                                       double overhang_degrees);
 
-//! The part on `down`: overhanging area and fraction.
+//! "3 keel edges (12.5 long), 1 tip pointing down" (only the kinds present; "" when none).
+std::string describe_keels_and_tips(const Standing& s);
+
+//! Features without area that need support on `down` (see the file comment).
+struct KeelsAndTips {
+  int keels = 0;
+  double keel_length = 0.0;
+  int tips = 0;
+  std::vector<std::uint8_t> triangle;  //!< per triangle: 1 along a keel or at a tip
+};
+//! A keel is a convex edge, not on the bed, whose two faces do not overhang, yet no direction
+//! within `overhang_degrees` of straight down enters the solid through both (the material under
+//! it is beyond the printer's angle, on either side). A tip is a vertex above the bed lower than
+//! all its neighbours, with the outward normals around it pointing down (the solid above it).
+KeelsAndTips keels_and_tips(const core::TriMesh& mesh, const core::Vec3& down,
+                            double overhang_degrees);
+
+//! Per triangle, what to look at: 0 printable as it is, 1 overhanging, 2 along a keel or at a tip.
+std::vector<std::uint8_t> support_marks(const core::TriMesh& mesh, const core::Vec3& down,
+                                        double overhang_degrees);
+
+//! The part on `down`: overhanging area and fraction, keels and tips.
 Standing stand(const core::TriMesh& mesh, const core::Vec3& down, const PrintOptions& options);
 
 //! A part on each of its flat sides, and the best: the least support among the sides it fits
-//! the chamber on (ties: the larger side).
+//! the chamber on; ties: the shorter keels, then the fewer tips, then the larger side.
 struct PartPrint {
   std::vector<Standing> sides;  //!< per flat side of the part, same order
   int best = -1;                //!< index into sides; -1 when it fits on none (or has none)

@@ -8,6 +8,7 @@
 #include "io/three_mf.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <array>
 #include <cmath>
@@ -89,8 +90,8 @@ core::MeshData exploded(const Fabrication& f) {
     const int best = f.prints[i].best;
     const std::vector<std::uint8_t> over =
         best < 0 ? std::vector<std::uint8_t>(p.mesh.cells.size(), 0)
-                 : fabricate::overhanging(p.mesh, p.sides[static_cast<std::size_t>(best)].normal,
-                                          f.print.overhang_degrees);
+                 : fabricate::support_marks(p.mesh, p.sides[static_cast<std::size_t>(best)].normal,
+                                            f.print.overhang_degrees);
     for (std::size_t t = 0; t < p.mesh.cells.size(); ++t) {
       const auto& tri = p.mesh.cells[t];
       out.triangles.push_back({tri[0] + base, tri[1] + base, tri[2] + base});
@@ -116,6 +117,14 @@ nlohmann::json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 double percent(double fraction) { return 100.0 * fraction; }
 
 }  // namespace
+
+nlohmann::json support_json(const fabricate::Standing& s) {
+  return {{"support_percent", percent(s.support_fraction)},
+          {"needs_support", s.needs_support()},
+          {"keels", s.keels},
+          {"keel_length", s.keel_length},
+          {"tips", s.tips}};
+}
 
 double Fabrication::parts_support_fraction() const {
   double over = 0.0, area = 0.0;
@@ -224,8 +233,8 @@ nlohmann::json parts_json(const Fabrication& f) {
     nlohmann::json sides = nlohmann::json::array();
     const fabricate::PartPrint& print = f.prints[i];
     const PartMill& mill = f.mills[i];
-    for (std::size_t k = 0; k < p.sides.size(); ++k)
-      sides.push_back(
+    for (std::size_t k = 0; k < p.sides.size(); ++k) {
+      nlohmann::json side(
           {{"cut", p.sides[k].cut},
            {"normal", vec(p.sides[k].normal)},
            {"area", p.sides[k].area},
@@ -242,10 +251,12 @@ nlohmann::json parts_json(const Fabrication& f) {
             {{"point", vec(mill.four_axis.axis.point)},
              {"direction", vec(mill.four_axis.axis.direction)},
              {"unreached_percent", percent(mill.four_axis.unreached)}}},
-           {"support_percent", percent(print.sides[k].support_fraction)},
            {"three_axis_unreachable_percent",
             k < f.mills[i].three_axis.size() ? nlohmann::json(percent(f.mills[i].three_axis[k]))
                                              : nlohmann::json(nullptr)}});
+      side.update(support_json(print.sides[k]));
+      sides.push_back(side);
+    }
     const std::string why = part_problem(p);
     nlohmann::json part = {
         {"file", p.mesh.cells.empty() ? nlohmann::json(nullptr) : nlohmann::json(part_file(i))},
@@ -275,11 +286,11 @@ nlohmann::json parts_json(const Fabrication& f) {
         {"four_axis",
          {{"point", vec(mill.four_axis.axis.point)},
           {"direction", vec(mill.four_axis.axis.direction)},
-          {"unreached_percent", percent(mill.four_axis.unreached)}}},
-        {"support_percent",
-         print.best >= 0 ? nlohmann::json(percent(
-                               print.sides[static_cast<std::size_t>(print.best)].support_fraction))
-                         : nlohmann::json(nullptr)}};
+          {"unreached_percent", percent(mill.four_axis.unreached)}}}};
+    if (print.best >= 0)
+      part.update(support_json(print.sides[static_cast<std::size_t>(print.best)]));
+    else
+      part["support_percent"] = part["needs_support"] = nullptr;
     if (!p.mesh.points.empty()) {
       const core::BoundingBox bb = core::bounding_box(p.mesh.points);
       part["bounding_box"] = {{"min", vec(bb.min)}, {"max", vec(bb.max)}};
@@ -328,18 +339,22 @@ std::string parts_table(const Fabrication& f) {
   text +=
       "  part  box  triangles      volume    size (bounding box)        sides  base  %3DPPS   "
       "%3AM   %4AM  check\n";
+  std::vector<std::string> starred;  // parts that need support where their fraction does not say
   for (std::size_t i = 0; i < d.parts.parts.size(); ++i) {
     const fabricate::Part& p = d.parts.parts[i];
     Vec3 size = Vec3::Zero();
     if (!p.mesh.points.empty()) size = core::bounding_box(p.mesh.points).extent();
     const std::string why = part_problem(p);
     const fabricate::PartPrint& print = f.prints[i];
-    const std::string support =
-        print.best < 0
-            ? std::string("-")
-            : fmt::format(
-                  "{:.2f}",
-                  percent(print.sides[static_cast<std::size_t>(print.best)].support_fraction));
+    std::string support = "-";
+    if (print.best >= 0) {
+      const fabricate::Standing& on = print.sides[static_cast<std::size_t>(print.best)];
+      support = fmt::format("{:.2f}", percent(on.support_fraction));
+      if (on.keels > 0 || on.tips > 0) {
+        support += "*";
+        starred.push_back(fmt::format("part {}: {}", i, fabricate::describe_keels_and_tips(on)));
+      }
+    }
     const PartMill& mill = f.mills[i];
     const std::string three =
         mill.best < 0 ? std::string("-")
@@ -351,6 +366,11 @@ std::string parts_table(const Fabrication& f) {
         print.best >= 0 ? std::to_string(print.best) : "-", support, three,
         percent(mill.four_axis.unreached), why.empty() ? "ok" : why);
   }
+  if (!starred.empty())
+    text += fmt::format(
+        "  * also needs support under edges or points with nothing within the printer's angle "
+        "below them (keels, tips pointing down): {}\n",
+        fmt::join(starred, "; "));
   text += fmt::format(
       "support (overhang beyond {:g} degrees, % of the surface): in one piece {:.2f} "
       "(%3DPST), in parts {:.2f} (%3DPPST)\n",
@@ -368,13 +388,15 @@ int remove_earlier_parts(const fs::path& dir) {
   int removed = 0;
   std::error_code ec;
   const auto remove = [&](const fs::path& p) { removed += fs::remove(p, ec) ? 1 : 0; };
-  for (const char* name : {"parts.3mf", "exploded.ply", "exploded.vtk", "parts.json"}) remove(dir / name);
+  for (const char* name : {"parts.3mf", "exploded.ply", "exploded.vtk", "parts.json"})
+    remove(dir / name);
   for (const fs::path& folder : {dir, dir / "print"}) {
     if (!fs::is_directory(folder, ec)) continue;
     std::vector<fs::path> parts;
     for (const auto& entry : fs::directory_iterator(folder, ec)) {
       const std::string name = entry.path().filename().string();
-      if (entry.is_regular_file() && name.starts_with("part_") && name.ends_with(".stl")) parts.push_back(entry.path());
+      if (entry.is_regular_file() && name.starts_with("part_") && name.ends_with(".stl"))
+        parts.push_back(entry.path());
     }
     for (const fs::path& p : parts) remove(p);
   }
@@ -386,7 +408,8 @@ std::vector<fs::path> write_parts(const fs::path& dir, const Fabrication& f) {
   // A folder written before holds the earlier decomposition's parts: fewer parts now would
   // leave some of them behind, looking like parts of this one.
   if (const int removed = remove_earlier_parts(dir); removed > 0)
-    core::logger().info("fabricate: removed {} files of an earlier decomposition in {}", removed, dir.string());
+    core::logger().info("fabricate: removed {} files of an earlier decomposition in {}", removed,
+                        dir.string());
   fs::create_directories(dir);
   std::vector<fs::path> files;
   std::vector<io::ThreeMfObject> objects;

@@ -7,7 +7,8 @@
 //!   exploded.ply      the parts moved apart from the solid's centre, a colour per part
 //!                     (face properties red, green, blue) and the part id (MeshLab, ParaView)
 //!   exploded.vtk      the same with cell data part_id, flat_side (1 on a cut face) and
-//!                     overhang (1 where the part on its best base needs support; ParaView)
+//!                     overhang (where the part on its best base needs support: 1 an
+//!                     overhanging face, 2 along a keel or at a tip; ParaView)
 //!   parts.json        the decomposition and, per part, its box, volume, bounding box,
 //!                     triangles, checks, flat sides (outward normal, area, support needed
 //!                     standing on it), and its best base; the thesis's Table 6.2 figures
@@ -67,6 +68,10 @@ Fabrication fabricate_solid(const core::PolycubeMap& map, const core::TriMesh& s
                             const fabricate::DecomposeOptions& options,
                             const fabricate::PrintOptions& print = {},
                             const MillOptions& mill = {});
+
+//! The support a part needs standing so, for parts.json and check-fab's JSON: support_percent
+//! (the thesis's area), needs_support, keels, keel_length, tips.
+nlohmann::json support_json(const fabricate::Standing& s);
 
 //! Why a part fails the checks (closed, outward, free of self-intersections, not empty), or
 //! "" when it passes.

@@ -1,13 +1,19 @@
 // Support needed to print a part: a cube needs none on any side; a T standing on its stem needs
 // support under the two arms of its bar (2 of its 18 unit squares), upside down none, on the end
 // of its bar under the stem's side (1 of 18); the best base is the side needing least among
-// those that fit the chamber; a solid in one piece takes its best axis.
+// those that fit the chamber; a solid in one piece takes its best axis. Features without area
+// need support too: a keel rising less steeply than the printer's angle, a tip pointing down.
 #include "core/topology.h"
 #include "fabricate/printing.h"
 
 #include "../support/fixtures.h"
 
 #include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <map>
 
 namespace polycube {
 namespace {
@@ -38,7 +44,83 @@ TEST(Printing, ACubeNeedsNoSupportOnAnySide) {
     for (const double s : {-1.0, 1.0}) {
       const fabricate::Standing st = fabricate::stand(cube, s * Vec3::Unit(a), {});
       EXPECT_EQ(st.overhang_area, 0.0) << a << " " << s;
+      EXPECT_FALSE(st.needs_support()) << a << " " << s;
     }
+}
+
+TEST(Printing, AKeelRisingLessSteeplyThanThePrinterCanNeedsSupportThoughNoFaceOverhangs) {
+  const fabricate::Standing low = fabricate::stand(test::keel_prism(30), -Vec3::UnitZ(), {});
+  EXPECT_EQ(low.overhang_area, 0.0);  // every face is 60 degrees or more from straight down
+  EXPECT_EQ(low.keels, 1);
+  EXPECT_NEAR(low.keel_length, 4.0, 1e-12);
+  EXPECT_EQ(low.tips, 0);
+  EXPECT_TRUE(low.needs_support());
+  const std::vector<std::uint8_t> marks =
+      fabricate::support_marks(test::keel_prism(30), -Vec3::UnitZ(), 45);
+  EXPECT_EQ(marks, (std::vector<std::uint8_t>{0, 0, 0, 2, 2, 0, 0, 0}));  // the keel's faces
+  // Steeper than the angle, the keel holds itself up; the low end's cap now overhangs (area 2).
+  const fabricate::Standing steep = fabricate::stand(test::keel_prism(60), -Vec3::UnitZ(), {});
+  EXPECT_EQ(steep.keels, 0);
+  EXPECT_NEAR(steep.overhang_area, 2.0, 1e-12);
+  // Exactly at the angle the keel holds, as a face exactly at the angle does. So does the end
+  // cap, now exactly at the angle too, but only along the one direction straight out of it,
+  // which the V's faces cut off at its two lower edges: those are keels, the keel itself not.
+  const fabricate::Standing at = fabricate::stand(test::keel_prism(45), -Vec3::UnitZ(), {});
+  EXPECT_EQ(at.overhang_area, 0.0);
+  EXPECT_EQ(at.keels, 2);
+  EXPECT_EQ(fabricate::support_marks(test::keel_prism(45), -Vec3::UnitZ(), 45),
+            (std::vector<std::uint8_t>{2, 0, 2, 0, 0, 2, 0, 0}));
+  // A printer that takes 65 degrees from the vertical holds the 30-degree keel.
+  fabricate::PrintOptions wide;
+  wide.overhang_degrees = 65.0;
+  EXPECT_EQ(fabricate::stand(test::keel_prism(30), -Vec3::UnitZ(), wide).keels, 0);
+  // Upside down the keel is the top ridge.
+  EXPECT_EQ(fabricate::stand(test::keel_prism(30), Vec3::UnitZ(), {}).keels, 0);
+}
+
+TEST(Printing, AmongSidesNeedingNoSupportAreaTheOneWithoutAKeelIsChosen) {
+  fabricate::Part part;
+  part.mesh = test::keel_prism(30);
+  const Vec3 top = Eigen::AngleAxisd(-M_PI / 6, Vec3::UnitY()) * Vec3::UnitZ();
+  // On the keel's end the keel needs support; on its top face, nothing does. The larger side
+  // would win a tie of area alone.
+  part.sides = {{0, -Vec3::UnitZ(), 3.0}, {1, top, 1.0}};
+  const fabricate::PartPrint p = fabricate::check_part_printing(part, {});
+  EXPECT_EQ(p.sides[0].support_fraction, 0.0);
+  EXPECT_EQ(p.sides[1].support_fraction, 0.0);
+  EXPECT_EQ(p.sides[0].keels, 1);
+  EXPECT_FALSE(p.sides[1].needs_support());
+  EXPECT_EQ(p.best, 1);
+}
+
+TEST(Printing, ATipPointingDownUnderAnArmNeedsSupport) {
+  // The T with the underside of its arm x in [0, 1] pushed down into a pyramid, apex 0.9 below.
+  core::TriMesh t = t_shape();
+  const auto under_arm = [&](const std::array<int, 3>& c) {
+    return std::all_of(c.begin(), c.end(),
+                       [&](int v) { return t.points[v].z() == 1.0 && t.points[v].x() <= 1.0; });
+  };
+  std::map<std::pair<int, int>, int> sides;  // directed edges of the removed square
+  std::vector<std::array<int, 3>> kept;
+  for (const auto& c : t.cells) {
+    if (!under_arm(c)) {
+      kept.push_back(c);
+      continue;
+    }
+    for (int e = 0; e < 3; ++e) ++sides[{c[e], c[(e + 1) % 3]}];
+  }
+  ASSERT_EQ(kept.size() + 2, t.cells.size());
+  const int apex = static_cast<int>(t.points.size());
+  t.points.emplace_back(0.5, 0.5, 0.1);
+  for (const auto& [edge, n] : sides)
+    if (!sides.count({edge.second, edge.first})) kept.push_back({edge.first, edge.second, apex});
+  t.cells = kept;
+  ASSERT_EQ(core::analyze_surface(t).boundary_edges, 0);
+  const fabricate::Standing up = fabricate::stand(t, -Vec3::UnitZ(), {});
+  EXPECT_EQ(up.tips, 1);
+  EXPECT_EQ(up.keels, 0);                     // the pyramid's faces and edges are steep enough
+  EXPECT_NEAR(up.overhang_area, 1.0, 1e-12);  // the other arm's underside
+  EXPECT_EQ(fabricate::stand(t, Vec3::UnitZ(), {}).tips, 0);  // upside down: a pit's bottom
 }
 
 TEST(Printing, ATOnItsStemNeedsSupportUnderItsArms) {

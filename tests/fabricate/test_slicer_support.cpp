@@ -4,6 +4,10 @@
 // over all the parts our support fractions must rank them as PrusaSlicer's support filament
 // does (Spearman's rho >= 0.8). Skipped when prusa-slicer is not installed.
 #include "cli/run_cli.h"
+#include "fabricate/printing.h"
+#include "io/mesh_io.h"
+
+#include "../support/fixtures.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -59,6 +63,19 @@ double support_filament(const fs::path& gcode) {
   return total;
 }
 
+//! Support filament PrusaSlicer extrudes for an STL as it stands, support on at 45 degrees. Our
+//! own data folder, so that no user profile changes the settings; a bed larger than any part.
+double slice(const fs::path& stl, const fs::path& config) {
+  const fs::path gcode = stl.string() + ".gcode";
+  const std::string command = fmt::format(
+      "prusa-slicer --datadir '{}' --export-gcode --support-material "
+      "--support-material-threshold 45 --bed-shape 0x0,1000x0,1000x1000,0x1000 "
+      "--max-print-height 1000 --center 500,500 -o '{}' '{}' > '{}.log' 2>&1",
+      config.string(), gcode.string(), stl.string(), gcode.string());
+  EXPECT_EQ(std::system(command.c_str()), 0) << command;
+  return support_filament(gcode);
+}
+
 //! Ranks 1..n, ties sharing their mean rank.
 std::vector<double> ranks(const std::vector<double>& x) {
   std::vector<std::size_t> order(x.size());
@@ -112,18 +129,10 @@ TEST(SlicerSupport, PrusaSlicerSupportsThePartsWeSayNeedItAndRanksThemAsWeDo) {
     for (const auto& p : j["parts"]) {
       ASSERT_FALSE(p["print_file"].is_null()) << sample << " " << p["file"];
       const fs::path part = out / "parts" / p["print_file"].get<std::string>();
-      const fs::path gcode = part.string() + ".gcode";
-      // Our own data folder, so that no user profile changes the settings; a bed larger than
-      // any sample part.
-      const std::string command = fmt::format(
-          "prusa-slicer --datadir '{}' --export-gcode --support-material "
-          "--support-material-threshold 45 --bed-shape 0x0,1000x0,1000x1000,0x1000 "
-          "--max-print-height 1000 --center 500,500 -o '{}' '{}' > '{}.log' 2>&1",
-          (dir / "config").string(), gcode.string(), part.string(), gcode.string());
-      ASSERT_EQ(std::system(command.c_str()), 0) << command;
-      const double filament = support_filament(gcode);
+      const double filament = slice(part, dir / "config");
       const double percent = p["support_percent"].get<double>();
-      if (percent == 0.0) {
+      if (!p["needs_support"].get<bool>()) {
+        EXPECT_EQ(percent, 0.0);
         EXPECT_EQ(filament, 0.0) << sample << " " << p["file"];
       }
       ours.push_back(percent);
@@ -135,6 +144,23 @@ TEST(SlicerSupport, PrusaSlicerSupportsThePartsWeSayNeedItAndRanksThemAsWeDo) {
   const double rho = spearman(ours, slicer);
   RecordProperty("spearman_rho", std::to_string(rho));
   EXPECT_GE(rho, 0.8);
+}
+
+TEST(SlicerSupport, PrusaSlicerSupportsAKeelThoughNoFaceOfItOverhangs) {
+  if (!have_prusa_slicer()) GTEST_SKIP() << "prusa-slicer not installed";
+  const fs::path dir =
+      fs::path(::testing::TempDir()) / ("slicer_keel_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "config");
+  // 40 mm long, rising at 30 degrees from its end on the bed; its faces 60 degrees or more from
+  // straight down.
+  core::TriMesh keel = test::keel_prism(30);
+  for (core::Vec3& p : keel.points) p *= 10.0;
+  const fabricate::Standing s = fabricate::stand(keel, -core::Vec3::UnitZ(), {});
+  EXPECT_EQ(s.support_fraction, 0.0);
+  EXPECT_TRUE(s.needs_support());
+  io::write_mesh((dir / "keel.stl").string(), core::to_mesh_data(keel));
+  EXPECT_GT(slice(dir / "keel.stl", dir / "config"), 0.0);
 }
 
 }  // namespace

@@ -40,8 +40,8 @@ inline core::HexMesh hex_grid(int nx, int ny, int nz, double h = 1.0) {
 
 //! nx by ny by nz grid of the box [0,sx] x [0,sy] x [0,sz].
 inline core::HexMesh box_grid(int nx, int ny, int nz, double sx = 1, double sy = 1, double sz = 1) {
-  return lattice_hexes(nx, ny, nz,
-                       [&](int i, int j, int k) { return Vec3(sx * i / nx, sy * j / ny, sz * k / nz); });
+  return lattice_hexes(
+      nx, ny, nz, [&](int i, int j, int k) { return Vec3(sx * i / nx, sy * j / ny, sz * k / nz); });
 }
 
 inline double tet_volume(const core::TetMesh& m, int c) {
@@ -136,6 +136,21 @@ inline core::TriMesh tri_grid(int n) {
       m.cells.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
       m.cells.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
     }
+  return m;
+}
+
+//! A triangular prism 4 long whose section is a V: the keel (y 0, z 0) and the top corners
+//! (y +-1, z 2), so that its two lower faces are 63.4 degrees from straight down (printable alone).
+//! Turned about y so that the keel rises at `rise` degrees from its end at the origin.
+inline core::TriMesh keel_prism(double rise_degrees) {
+  core::TriMesh m;
+  for (const double x : {0.0, 4.0})
+    for (const Vec3 p : {Vec3(x, 0, 0), Vec3(x, 1, 2), Vec3(x, -1, 2)}) m.points.push_back(p);
+  // 0 1 2 at x = 0, 3 4 5 at x = 4; outward.
+  m.cells = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3},
+             {0, 3, 5}, {0, 5, 2}, {1, 2, 5}, {1, 5, 4}};
+  const Eigen::Matrix3d turn(Eigen::AngleAxisd(-rise_degrees * M_PI / 180.0, Vec3::UnitY()));
+  for (Vec3& p : m.points) p = turn * p;
   return m;
 }
 
