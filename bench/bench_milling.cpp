@@ -1,5 +1,6 @@
-//! Benchmark of the milling checks (issue 21, fabricate/milling.h): for each surface, the time
-//! (median of 3) of the 3-axis check on one base, of the 4-axis check about one axis with 40
+//! Benchmark of the checks of a part (issue 21, fabricate/milling.h, fabricate/printing.h): for
+//! each surface, the time (median of 3) of the printing check on one base (overhanging area,
+//! keels and tips), of the 3-axis check on one base, of the 4-axis check about one axis with 40
 //! tool directions, and of the automatic axis (three 4-axis checks), with the fractions found.
 //! Prints a text table, or JSON with --json.
 //!
@@ -11,6 +12,7 @@
 #include "core/stopwatch.h"
 #include "core/types.h"
 #include "fabricate/milling.h"
+#include "fabricate/printing.h"
 #include "io/mesh_io.h"
 
 #include "support/fixtures.h"
@@ -36,7 +38,10 @@ constexpr int kDirections = 40;
 struct Row {
   std::string model;
   int triangles = 0;
-  double three_axis_seconds = 0, four_axis_seconds = 0, choose_axis_seconds = 0;  // medians
+  double print_seconds = 0, three_axis_seconds = 0, four_axis_seconds = 0,
+         choose_axis_seconds = 0;  // medians
+  double support = 0;              // % overhanging area on -z
+  int keels = 0, tips = 0;
   double unreachable_3am = 0, occluded_3am = 0, unreached_4am = 0, unreached_auto = 0;
 };
 
@@ -78,8 +83,13 @@ Row measure(const std::string& name, const core::TriMesh& m) {
     hi = hi.cwiseMax(p);
   }
   const fabricate::Axis axis{0.5 * (lo + hi), Vec3::UnitZ()};
+  fabricate::Standing standing;
   fabricate::ThreeAxis three;
   fabricate::FourAxis four;
+  r.print_seconds = median_seconds([&] { standing = fabricate::stand(m, -Vec3::UnitZ(), {}); });
+  r.support = 100 * standing.support_fraction;
+  r.keels = standing.keels;
+  r.tips = standing.tips;
   fabricate::Axis automatic;
   r.three_axis_seconds =
       median_seconds([&] { three = fabricate::three_axis(m, -Vec3::UnitZ(), {}); });
@@ -96,6 +106,10 @@ Row measure(const std::string& name, const core::TriMesh& m) {
 nlohmann::json to_json(const Row& r) {
   return {{"model", r.model},
           {"triangles", r.triangles},
+          {"print_seconds", r.print_seconds},
+          {"support_percent", r.support},
+          {"keels", r.keels},
+          {"tips", r.tips},
           {"three_axis_seconds", r.three_axis_seconds},
           {"four_axis_seconds", r.four_axis_seconds},
           {"choose_axis_seconds", r.choose_axis_seconds},
@@ -138,11 +152,13 @@ int main(int argc, char** argv) {
     std::cout << out.dump(2) << "\n";
     return 0;
   }
-  std::printf("%-22s %9s %8s %8s %8s %7s %7s %7s %7s\n", "model", "triangles", "3-axis s",
-              "4-axis s", "axis s", "%3AM", "occl.%", "%4AM z", "%4AM au");
+  std::printf("%-22s %9s %8s %8s %8s %8s %7s %6s %5s %7s %7s %7s %7s\n", "model", "triangles",
+              "print s", "3-axis s", "4-axis s", "axis s", "support", "keels", "tips", "%3AM",
+              "occl.%", "%4AM z", "%4AM au");
   for (const Row& r : rows)
-    std::printf("%-22s %9d %8.3f %8.3f %8.3f %7.2f %7.2f %7.2f %7.2f\n", r.model.c_str(),
-                r.triangles, r.three_axis_seconds, r.four_axis_seconds, r.choose_axis_seconds,
+    std::printf("%-22s %9d %8.3f %8.3f %8.3f %8.3f %7.2f %6d %5d %7.2f %7.2f %7.2f %7.2f\n",
+                r.model.c_str(), r.triangles, r.print_seconds, r.three_axis_seconds,
+                r.four_axis_seconds, r.choose_axis_seconds, r.support, r.keels, r.tips,
                 r.unreachable_3am, r.occluded_3am, r.unreached_4am, r.unreached_auto);
   return 0;
 }
