@@ -80,6 +80,12 @@ void run_construct(const ConstructCliOptions& o) {
       {"vertices", r.map.num_vertices()},
       {"tets", r.map.num_tets()},
       {"tetgen_tets", r.tetgen_tets},
+      {"coarse_surface_refined",
+       r.coarse_refinement.levels > 0
+           ? nlohmann::json({{"levels", r.coarse_refinement.levels},
+                             {"triangles_before", r.coarse_refinement.triangles_before},
+                             {"triangles_after", r.coarse_refinement.triangles_after}})
+           : nlohmann::json(nullptr)},
       {"refine", {{"split_edges", r.refine.split_edges}, {"split_tets", r.refine.split_tets}}},
       {"split_boundary_triangles", r.split_triangles},
       {"split_boundary_edges", r.split_edges},
@@ -178,6 +184,13 @@ void register_construct(CLI::App& app) {
                   "Construction budget in seconds: an attempt with others still planned stops at half of what is left, "
                   "the last one at the budget; then the best attempt is certified, or the failure lists what was "
                   "tried (0: no limit, and the result does not depend on the machine's speed)")
+      ->capture_default_str()
+      ->check(cli::non_negative());
+  sub->add_option("--coarse-edge-ratio", c.coarse_edge_ratio,
+                  "When no labeling is valid and an edge of the surface is longer than the bounding-box diagonal "
+                  "over this, split every triangle into four at its edges' midpoints until none is (the surface "
+                  "does not move) and construct again: a tetrahedron, a wedge or a pyramid has too few triangles "
+                  "to label (0: never)")
       ->capture_default_str()
       ->check(cli::non_negative());
   sub->add_option("--keep-failed", opts->keep_failed,

@@ -84,6 +84,9 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
       {"isometric_max", known(r.isometric_max)},
       {"construct_attempt", r.construct_attempt},
       {"construct_attempts", known(r.construct_attempts)},
+      {"coarse_surface_refined",
+       r.coarse_levels > 0 ? nlohmann::json({{"levels", r.coarse_levels}, {"triangles", r.coarse_triangles}})
+                           : nlohmann::json(nullptr)},
       {"simplify_step", r.simplify_step},
       {"simplify_tried", r.simplify_tried},
       {"frozen_corners", known(r.frozen_corners)},
@@ -160,7 +163,8 @@ std::string summary_table(const pipeline::RunResult& r) {
     else if (s.name == "construct")
       what = fmt::format("{} tets, {} charts, {} corners, isometric avg {} max {}; {} ({} attempt(s) run)", r.tets,
                          r.charts, r.corners, figure(r.isometric_average), figure(r.isometric_max),
-                         r.construct_attempt, r.construct_attempts);
+                         r.construct_attempt, r.construct_attempts) +
+             (r.coarse_levels > 0 ? fmt::format("; the coarse surface split to {} triangles", r.coarse_triangles) : "");
     else if (s.name == "simplify")
       what = fmt::format("{}: #D {} -> {}, #dom {} -> {}", r.simplify_step, r.hex_domains_before,
                          r.hex_domains_after, r.quad_domains_before, r.quad_domains_after);
@@ -287,6 +291,13 @@ void register_run(CLI::App& app) {
                   "Construction budget in seconds: an attempt with others still planned stops at half of what is left, "
                   "the last one at the budget; then the best attempt is certified, or the failure lists what was "
                   "tried (0: no limit, and the result does not depend on the machine's speed)")
+      ->capture_default_str()
+      ->check(cli::non_negative());
+  sub->add_option("--coarse-edge-ratio", c.coarse_edge_ratio,
+                  "When no labeling is valid and an edge of the surface is longer than the bounding-box diagonal "
+                  "over this, split every triangle into four at its edges' midpoints until none is (the surface "
+                  "does not move) and construct again: a tetrahedron, a wedge or a pyramid has too few triangles "
+                  "to label (0: never)")
       ->capture_default_str()
       ->check(cli::non_negative());
   sub->add_option("--lambda-min", opts->run.simplify_options.align.lambda_min,

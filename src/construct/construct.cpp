@@ -439,7 +439,7 @@ ConstructResult construct_from_prepared(const core::TetMesh& input, const Constr
   const std::optional<AttemptResult> kept = run_plan(plan_attempts(o), model, o, clock, res, failures);
   res.tried = joined(failures);
   if (!failures.empty()) core::logger().info("construct: failed attempts: {}", res.tried);
-  if (!kept) throw core::SolverError("no valid polycube labeling reached: " + failure_summary(failures));
+  if (!kept) throw NoValidLabeling("no valid polycube labeling reached: " + failure_summary(failures));
   if (!kept->valid) core::logger().warn("construct: every attempt left inverted tets ({})", failure_summary(failures));
   report_attempt(*kept, res);
 
@@ -457,7 +457,10 @@ ConstructResult construct_from_prepared(const core::TetMesh& input, const Constr
   return res;
 }
 
-ConstructResult construct_polycube(const core::TriMesh& surface, const ConstructOptions& o) {
+namespace {
+
+//! TetGen (again with a volume bound when its mesh is too coarse), then the attempts.
+ConstructResult construct_tetrahedralized(const core::TriMesh& surface, const ConstructOptions& o) {
   const core::Stopwatch clock;
   TetrahedralizeResult tr = tetrahedralize(surface, o.tetrahedralize);
   if (o.tetrahedralize.max_volume == 0.0 && o.min_tets > 0 && tr.mesh.num_cells() < o.min_tets) {
@@ -486,6 +489,45 @@ ConstructResult construct_polycube(const core::TriMesh& surface, const Construct
   res.seconds.tetrahedralize = t_tet;
   res.seconds.total += t_tet;
   return res;
+}
+
+//! The surface split until no edge exceeds the diagonal over `coarse_edge_ratio`, or nullopt when
+//! no edge does (the labeling failed for another reason).
+std::optional<core::TriMesh> refined_coarse_surface(const core::TriMesh& surface, const ConstructOptions& o,
+                                                    SurfaceRefinement& done) {
+  // Enough for the coarsest solids (a tetrahedron ends at a few thousand triangles); a cap so
+  // that a fine surface with a few long edges is not multiplied beyond what TetGen takes.
+  constexpr int kMaxTriangles = 200000;
+  if (o.coarse_edge_ratio <= 0.0) return std::nullopt;
+  const double max_edge = core::bounding_box(surface.points).extent().norm() / o.coarse_edge_ratio;
+  if (longest_edge(surface) <= max_edge) return std::nullopt;
+  core::TriMesh finer = subdivide_to(surface, max_edge, kMaxTriangles, done);
+  if (done.levels == 0) return std::nullopt;
+  return finer;
+}
+
+}  // namespace
+
+ConstructResult construct_polycube(const core::TriMesh& surface, const ConstructOptions& o) {
+  const core::Stopwatch clock;
+  try {
+    return construct_tetrahedralized(surface, o);
+  } catch (const NoValidLabeling& e) {
+    SurfaceRefinement done;
+    const std::optional<core::TriMesh> finer = refined_coarse_surface(surface, o, done);
+    if (!finer) throw;
+    core::logger().warn(
+        "construct: no valid labeling on {} triangles (longest edge {:.4g}): the surface is too coarse; every "
+        "triangle split into {} at its edges' midpoints ({} triangles, longest edge {:.4g}, the surface unchanged), "
+        "constructing again",
+        done.triangles_before, done.longest_edge_before, 1 << (2 * done.levels), done.triangles_after,
+        done.longest_edge_after);
+    const double failed = clock.seconds();
+    ConstructResult res = construct_tetrahedralized(*finer, o);
+    res.coarse_refinement = done;
+    res.seconds.total += failed;
+    return res;
+  }
 }
 
 ConstructResult construct_polycube(core::TetMesh mesh, const ConstructOptions& o) {

@@ -5,6 +5,7 @@
 //! exception with the reason; an uncertified map is never returned.
 
 #include "construct/certify.h"
+#include "construct/coarse_surface.h"
 #include "construct/deform.h"
 #include "construct/labeling.h"
 #include "construct/labeling_repair.h"
@@ -77,6 +78,10 @@ struct ConstructOptions {
   //! Surface inputs: when TetGen's mesh (without a volume bound) has fewer tets than this, the
   //! surface is tetrahedralized again with a volume bound asking for about this many (0: never).
   int min_tets = 10000;
+  //! Surface inputs: when no attempt reaches a valid labeling and an edge is longer than the
+  //! bounding-box diagonal over this, every triangle is split into four until none is, and the
+  //! construction starts again (coarse_surface.h; 0: never).
+  double coarse_edge_ratio = 20.0;
   int max_attempts = 8;             //!< deformations in all, at most
   //! Testing only: the first this many deformed attempts count as failed whatever they gave,
   //! so the tests reach the fallback attempts and the budget on small inputs (the hidden
@@ -132,6 +137,13 @@ struct ConstructResult {
   double conformal_average = 0;
   double conformal_max = 0;
   ConstructTimes seconds;
+  SurfaceRefinement coarse_refinement;  //!< surface inputs too coarse for the labeling (levels 0: none)
+};
+
+//! No attempt reached a valid labeling (the defects of the first are in the message).
+class NoValidLabeling : public core::SolverError {
+ public:
+  using core::SolverError::SolverError;
 };
 
 //! The map could not be certified: carries the best (uncertified) attempt for diagnosis, so a

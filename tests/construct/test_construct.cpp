@@ -1,5 +1,7 @@
 // Tests of construct/: tetrahedralization + refinement, graph-cut labeling, validity repair.
 // Validity is judged by the independent validator in validator.h, not by labeling_check.
+#include "construct/coarse_surface.h"
+#include "construct/construct.h"
 #include "construct/labeling.h"
 #include "construct/labeling_check.h"
 #include "construct/labeling_repair.h"
@@ -392,6 +394,84 @@ TEST(LabelingCheck, CornerJoiningTwoEqualAxesIsADefect) {
   for (const auto& d : chk.defects) corner |= d.kind == construct::DefectKind::InvalidCorner;
   EXPECT_TRUE(corner);
   EXPECT_FALSE(test::validate_labeling(cube, labels).valid());
+}
+
+// --- coarse surfaces: refined without moving them ---------------------------------------------
+
+//! A wedge of 8 triangles: a triangular prism 20 long on a 10-wide base, 8 high.
+core::TriMesh wedge() {
+  core::TriMesh m;
+  m.points = {{0, 0, 0}, {0, 10, 0}, {0, 5, 8}, {20, 0, 0}, {20, 10, 0}, {20, 5, 8}};
+  m.cells = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}};
+  return m;
+}
+
+//! A square pyramid of 6 triangles, 10 wide and 7 high.
+core::TriMesh pyramid() {
+  core::TriMesh m;
+  m.points = {{0, 0, 0}, {10, 0, 0}, {10, 10, 0}, {0, 10, 0}, {5, 5, 7}};
+  m.cells = {{0, 2, 1}, {0, 3, 2}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  return m;
+}
+
+//! Whether p lies on one of the triangles of m (in its plane, inside it), to a relative tolerance.
+bool on_surface(const core::TriMesh& m, const core::Vec3& p) {
+  const double tol = 1e-12 * core::bounding_box(m.points).extent().norm();
+  for (const core::Tri& t : m.cells) {
+    const core::Vec3 a = m.points[t[0]], b = m.points[t[1]], c = m.points[t[2]];
+    const core::Vec3 n = (b - a).cross(c - a);
+    if (std::abs(n.normalized().dot(p - a)) > tol) continue;
+    // Inside: p on the inner side of each edge (in the triangle's plane).
+    const bool inside = n.dot((b - a).cross(p - a)) >= -tol * n.norm() &&
+                        n.dot((c - b).cross(p - b)) >= -tol * n.norm() &&
+                        n.dot((a - c).cross(p - c)) >= -tol * n.norm();
+    if (inside) return true;
+  }
+  return false;
+}
+
+TEST(CoarseSurface, SplittingKeepsTheSurfaceWhereItWasAndHalvesEveryEdge) {
+  const core::TriMesh w = wedge();
+  const double longest = construct::longest_edge(w);
+  EXPECT_DOUBLE_EQ(longest, std::sqrt(500.0));  // the base's diagonal
+  construct::SurfaceRefinement done;
+  const core::TriMesh fine = construct::subdivide_to(w, longest / 3.0, 1000000, done);
+  EXPECT_EQ(done.levels, 2);  // halved twice: longest / 4 <= longest / 3
+  EXPECT_EQ(done.triangles_before, 8);
+  EXPECT_EQ(done.triangles_after, 128);
+  EXPECT_EQ(fine.num_cells(), 128);
+  EXPECT_DOUBLE_EQ(done.longest_edge_after, longest / 4.0);
+  const auto report = core::analyze_surface(fine);
+  EXPECT_EQ(report.boundary_edges, 0);
+  EXPECT_TRUE(report.manifold);
+  EXPECT_EQ(fine.points.size(), 2u + 128u / 2u);  // Euler: V = 2 + F / 2 on a sphere
+  EXPECT_NEAR(core::signed_volume(fine), core::signed_volume(w), 1e-9 * core::signed_volume(w));
+  for (const core::Vec3& p : fine.points) EXPECT_TRUE(on_surface(w, p)) << p.transpose();
+  // The cap on triangles stops it: 32 fit under 100, 128 would not.
+  const core::TriMesh capped = construct::subdivide_to(w, 1e-3, 100, done);
+  EXPECT_EQ(done.levels, 1);
+  EXPECT_EQ(capped.num_cells(), 32);
+}
+
+TEST(CoarseSurface, AWedgeAndAPyramidConstructOnceRefinedAndNotOtherwise) {
+  construct::ConstructOptions o;
+  o.min_tets = 2000;  // enough for these shapes, and quick
+  for (const auto& [name, shape] : {std::pair{"wedge", wedge()}, std::pair{"pyramid", pyramid()}}) {
+    const construct::ConstructResult r = construct::construct_polycube(shape, o);
+    EXPECT_TRUE(r.certificate.certified()) << name;
+    EXPECT_EQ(r.coarse_refinement.triangles_before, shape.num_cells()) << name;
+    EXPECT_GT(r.coarse_refinement.levels, 0) << name;
+    EXPECT_LE(r.coarse_refinement.longest_edge_after,
+              core::bounding_box(shape.points).extent().norm() / o.coarse_edge_ratio)
+        << name;
+    EXPECT_GE(r.charts, 6) << name;
+    // The map's model is the solid: its volume is the shape's.
+    EXPECT_NEAR(tet_volume(r.map.model_mesh()), core::signed_volume(shape),
+                1e-9 * core::signed_volume(shape))
+        << name;
+  }
+  o.coarse_edge_ratio = 0.0;  // never refine: no labeling of 6 or 8 triangles is valid
+  EXPECT_THROW(construct::construct_polycube(pyramid(), o), construct::NoValidLabeling);
 }
 
 // --- the whole pipeline on shapes built in code ---------------------------------------------
