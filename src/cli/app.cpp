@@ -13,6 +13,7 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <tbb/global_control.h>
 #include <spdlog/sinks/basic_file_sink.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <semaphore.h>
@@ -27,6 +28,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <mutex>
 #include <thread>
@@ -314,6 +316,19 @@ void add_global_flags(CLI::App& app) {
   app.add_flag("-q,--quiet", g.quiet, "Only errors on stderr, no progress");
   app.add_flag("--json", g.json, "Print a machine-readable JSON summary on stdout");
   app.add_option("--log", g.log_file, "Also write every message, with its time, to this file (info level; debug with -vv)");
+  app.add_option("--threads", g.threads,
+                 "Worker threads at most (0: every core); the results are the same whatever the number")
+      ->check(CLI::NonNegativeNumber);
+}
+
+void limit_threads() {
+  // Held for the whole process: TBB's parallel loops (optimizer, untangler, distances) use at
+  // most this many threads. The fabrication's ray casting already runs on one.
+  static std::unique_ptr<tbb::global_control> limit;
+  const int n = global_options().threads;
+  if (n > 0)
+    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                  static_cast<std::size_t>(n));
 }
 
 void setup_logging_and_progress() {

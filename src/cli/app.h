@@ -53,6 +53,7 @@ struct GlobalOptions {
   std::string command_line;
   std::string log_file;     //!< --log FILE: every message also goes there, with its time
   std::string save_config;  //!< --save-config FILE: the command's settings written there (TOML)
+  int threads = 0;          //!< --threads N: worker threads at most (0: every core)
 };
 
 //! The program's version, as --version prints it and reports record it.
@@ -66,6 +67,9 @@ void add_global_flags(CLI::App& app);
 
 //! Install the stderr logger and, when stderr is a terminal and not quiet, the progress bar.
 void setup_logging_and_progress();
+
+//! Apply --threads for the rest of the process (call once, after parsing).
+void limit_threads();
 
 //! `--config FILE` (read settings from a TOML file, as --save-config writes them; the command
 //! line wins) and `--save-config FILE` on the top app.

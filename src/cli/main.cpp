@@ -39,6 +39,7 @@ int main(int argc, char** argv) {
   capture_defaults(app);
   app.parse_complete_callback([&app] {
     setup_logging_and_progress();
+    limit_threads();
     save_config_if_asked(app);
   });
 

@@ -321,6 +321,26 @@ TEST_F(RunBox, SameInputSameOutput) {
   EXPECT_EQ(slurp(dir_ / "out" / "simplify" / "polycube.mesh"), slurp(again / "out" / "simplify" / "polycube.mesh"));
 }
 
+TEST(RunCli, OneThreadOrTwoWriteTheSameFiles) {
+  // A shape with work for every parallel loop: an optimizer that iterates, selective padding.
+  const fs::path dir = temp_dir("threads");
+  ASSERT_EQ(test::run_cli(fmt::format("sample box-cylinder -o \"{}\"", (dir / "bc.obj").string())).exit_code, 0);
+  for (const int threads : {1, 2}) {
+    const CliResult r = test::run_cli(fmt::format("-q --threads {} run \"{}\" -o \"{}\" --hexes 500", threads,
+                                                  (dir / "bc.obj").string(), (dir / std::to_string(threads)).string()));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  const nlohmann::json one = read_report(dir / "1"), two = read_report(dir / "2");
+  ASSERT_GE(one["files"].size(), 8u);
+  std::vector<std::string> files;
+  for (const auto& f : one["files"]) files.push_back(fs::relative(f.get<std::string>(), dir / "1").string());
+  std::vector<std::string> other;
+  for (const auto& f : two["files"]) other.push_back(fs::relative(f.get<std::string>(), dir / "2").string());
+  EXPECT_EQ(files, other);
+  for (const std::string& f : files)
+    if (f != "report.json") EXPECT_EQ(slurp(dir / "1" / f), slurp(dir / "2" / f)) << f;
+}
+
 TEST(RunCli, OpenSurfaceStopsWithExitTwoBeforeAnyHeavyWork) {
   const fs::path dir = temp_dir("open");
   auto m = test::make_box(1.0, 1.0, 1.0, 2);
