@@ -508,25 +508,56 @@ std::optional<core::TriMesh> refined_coarse_surface(const core::TriMesh& surface
 
 }  // namespace
 
+namespace {
+
+//! What the user can do about a labeling that failed, when the shape says: a solid much thinner
+//! than it is wide (a slab of 1 x 1 x 1e-6) leaves its sides too narrow for charts of their own.
+//! Its mean thickness 2 V / A is exact for a slab (and 2r/3 for a ball of radius r).
+std::string labeling_hint(const core::TriMesh& surface, const SurfaceRefinement& done) {
+  std::string hint;
+  if (done.levels > 0)
+    hint += fmt::format("; the surface was refined from {} to {} triangles first", done.triangles_before,
+                        done.triangles_after);
+  double area = 0.0;
+  for (const core::Tri& t : surface.cells)
+    area += 0.5 * (surface.points[t[1]] - surface.points[t[0]]).cross(surface.points[t[2]] - surface.points[t[0]]).norm();
+  const double diagonal = core::bounding_box(surface.points).extent().norm();
+  const double thickness = area > 0.0 ? 2.0 * std::abs(core::signed_volume(surface)) / area : 0.0;
+  constexpr double kThin = 1e-3;  // of the diagonal: far below any part the tool is meant for
+  if (diagonal > 0.0 && thickness < kThin * diagonal)
+    hint += fmt::format(
+        "; the solid is thin (mean thickness 2 volume / area = {:.3g}, {:.2g} of its diagonal): its sides are too narrow "
+        "to label; thicken it",
+        thickness, thickness / diagonal);
+  return hint;
+}
+
+}  // namespace
+
 ConstructResult construct_polycube(const core::TriMesh& surface, const ConstructOptions& o) {
   const core::Stopwatch clock;
+  SurfaceRefinement done;
+  std::optional<core::TriMesh> finer;
   try {
     return construct_tetrahedralized(surface, o);
   } catch (const NoValidLabeling& e) {
-    SurfaceRefinement done;
-    const std::optional<core::TriMesh> finer = refined_coarse_surface(surface, o, done);
-    if (!finer) throw;
+    finer = refined_coarse_surface(surface, o, done);
+    if (!finer) throw NoValidLabeling(e.what() + labeling_hint(surface, done));
     core::logger().warn(
         "construct: no valid labeling on {} triangles (longest edge {:.4g}): the surface is too coarse; every "
         "triangle split into {} at its edges' midpoints ({} triangles, longest edge {:.4g}, the surface unchanged), "
         "constructing again",
         done.triangles_before, done.longest_edge_before, 1 << (2 * done.levels), done.triangles_after,
         done.longest_edge_after);
-    const double failed = clock.seconds();
+  }
+  const double failed = clock.seconds();
+  try {
     ConstructResult res = construct_tetrahedralized(*finer, o);
     res.coarse_refinement = done;
     res.seconds.total += failed;
     return res;
+  } catch (const NoValidLabeling& e) {
+    throw NoValidLabeling(e.what() + labeling_hint(surface, done));
   }
 }
 

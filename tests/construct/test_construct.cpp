@@ -474,6 +474,23 @@ TEST(CoarseSurface, AWedgeAndAPyramidConstructOnceRefinedAndNotOtherwise) {
   EXPECT_THROW(construct::construct_polycube(pyramid(), o), construct::NoValidLabeling);
 }
 
+TEST(CoarseSurface, AThinSlabThatCannotBeLabeledSaysItsThicknessIsTheCause) {
+  const core::TriMesh slab = test::make_box(1.0, 1.0, 1e-6, 1);
+  ASSERT_EQ(slab.num_cells(), 12);
+  try {
+    construct::construct_polycube(slab, {});
+    FAIL() << "a 1 x 1 x 1e-6 slab was labeled";
+  } catch (const construct::NoValidLabeling& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("refined from 12 to"), std::string::npos) << what;
+    EXPECT_NE(what.find("the solid is thin (mean thickness 2 volume / area = 1e-06"), std::string::npos) << what;
+  }
+  // A cube of 12 triangles is as coarse, but it labels as it is: nothing is refined.
+  const construct::ConstructResult cube = construct::construct_polycube(test::make_box(1.0, 1.0, 1.0, 1), {});
+  EXPECT_TRUE(cube.certificate.certified());
+  EXPECT_EQ(cube.coarse_refinement.levels, 0);
+}
+
 // --- the whole pipeline on shapes built in code ---------------------------------------------
 
 TEST(Pipeline, Cube) {
