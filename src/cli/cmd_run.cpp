@@ -293,13 +293,14 @@ void register_run(CLI::App& app) {
                   "tried (0: no limit, and the result does not depend on the machine's speed)")
       ->capture_default_str()
       ->check(cli::non_negative());
-  sub->add_option("--coarse-edge-ratio", c.coarse_edge_ratio,
-                  "When no labeling is valid and an edge of the surface is longer than the bounding-box diagonal "
-                  "over this, split every triangle into four at its edges' midpoints until none is (the surface "
-                  "does not move) and construct again: a tetrahedron, a wedge or a pyramid has too few triangles "
-                  "to label (0: never)")
-      ->capture_default_str()
-      ->check(cli::non_negative());
+  CLI::Option* coarse =
+      sub->add_option("--coarse-edge-ratio", c.coarse_edge_ratio,
+                      "When no labeling is valid and an edge of the surface is longer than the bounding-box "
+                      "diagonal over this, split every triangle into four at its edges' midpoints until none is "
+                      "(the surface does not move) and construct again: a tetrahedron, a wedge or a pyramid has "
+                      "too few triangles to label (0: never)")
+          ->capture_default_str()
+          ->check(cli::non_negative());
   sub->add_option("--lambda-min", opts->run.simplify_options.align.lambda_min,
                   "Simplification: stop before an iteration whose lambda is below this (0: until convergence)")
       ->capture_default_str()
@@ -311,7 +312,9 @@ void register_run(CLI::App& app) {
                              "optimize-step-3", "optimize-step-4", "pad"}))
       ->group("");
   opts->command = sub;
-  add_expert_options(*sub, add_repair_options(*sub, opts->run.repair));
+  std::vector<CLI::Option*> expert = add_repair_options(*sub, opts->run.repair);
+  expert.insert(expert.begin(), coarse);
+  add_expert_options(*sub, expert);
   sub->callback([opts] { run_run(*opts); });
 }
 
