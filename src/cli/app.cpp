@@ -323,12 +323,13 @@ void add_global_flags(CLI::App& app) {
 
 void limit_threads() {
   // Held for the whole process: TBB's parallel loops (optimizer, untangler, distances) use at
-  // most this many threads. The fabrication's ray casting already runs on one.
+  // most this many threads. The fabrication's ray casting and CHOLMOD's BLAS already run on one
+  // (solve/sparse_solver.cpp).
   static std::unique_ptr<tbb::global_control> limit;
   const int n = global_options().threads;
-  if (n > 0)
-    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                  static_cast<std::size_t>(n));
+  if (n <= 0) return;
+  limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                static_cast<std::size_t>(n));
 }
 
 void setup_logging_and_progress() {

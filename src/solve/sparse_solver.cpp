@@ -6,6 +6,9 @@
 
 #include <algorithm>
 #include <cholmod.h>
+#include <dlfcn.h>
+
+#include <mutex>
 
 #include <string>
 
@@ -48,6 +51,21 @@ std::string status_text(int status) {
   }
 }
 
+//! The supernodal factorization's dense blocks go to the BLAS, and a threaded BLAS (OpenBLAS,
+//! Debian's default) splits them by its thread count, which changes the rounding: the same
+//! input gave other maps on one thread than on two. Run the BLAS (and OpenMP) on one thread,
+//! so results do not depend on the machine's cores; our own parallel loops (TBB) are
+//! deterministic. Its idle threads also spin, which slowed two jobs side by side by 1.4x.
+//! Looked up by name, so that any BLAS links.
+void single_threaded_blas() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    using SetThreads = void (*)(int);
+    for (const char* name : {"openblas_set_num_threads", "omp_set_num_threads"})
+      if (void* f = dlsym(RTLD_DEFAULT, name)) reinterpret_cast<SetThreads>(f)(1);
+  });
+}
+
 }  // namespace
 
 struct SparseSpdSolver::Impl {
@@ -57,6 +75,7 @@ struct SparseSpdSolver::Impl {
   bool ok = false;
 
   Impl() {
+    single_threaded_blas();
     cholmod_start(&common);
     common.print = 0;  // the library never prints
     common.error_handler = nullptr;
