@@ -409,6 +409,17 @@ std::function<void(int, int, const construct::Attempt&, double)> attempt_progres
   };
 }
 
+CLI::Option* add_coarse_edge_option(CLI::App& sub, construct::ConstructOptions& o) {
+  return sub
+      .add_option("--coarse-edge-ratio", o.coarse_edge_ratio,
+                  "When no labeling is valid and an edge of the surface is longer than the bounding-box diagonal "
+                  "over this, split every triangle into four at its edges' midpoints until none is (the surface "
+                  "does not move) and construct again: a tetrahedron, a wedge or a pyramid has too few triangles "
+                  "to label (0: never)")
+      ->capture_default_str()
+      ->check(cli::non_negative());
+}
+
 void add_expert_options(CLI::App& sub, const std::vector<CLI::Option*>& expert) {
   for (CLI::Option* o : expert) o->group("");
   sub.add_flag_callback(

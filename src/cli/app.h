@@ -26,6 +26,7 @@ namespace polycube::quality {
 struct ScaledJacobianSummary;
 }
 namespace polycube::construct {
+struct ConstructOptions;
 struct Attempt;
 }
 namespace polycube::optimize {
@@ -167,6 +168,9 @@ void add_expert_options(CLI::App& sub, const std::vector<CLI::Option*>& expert);
 //! their settings (`--max-hole`, `--wrap-alpha`, `--wrap-offset`). Returns the options of the
 //! settings, for add_expert_options.
 std::vector<CLI::Option*> add_repair_options(CLI::App& sub, repair::RepairOptions& o);
+
+//! --coarse-edge-ratio of construct and run (an expert option: the caller groups it).
+CLI::Option* add_coarse_edge_option(CLI::App& sub, construct::ConstructOptions& o);
 
 //! Run the parsed application, mapping exceptions to exit codes and one-line messages (and,
 //! with --json, a JSON object `{"status": "failed", "exit_code", "error"}` on stdout unless the

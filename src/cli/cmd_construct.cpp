@@ -191,13 +191,7 @@ void register_construct(CLI::App& app) {
                   "uncertified_polycube.mesh (boundary labels as triangle references), for diagnosis");
   const std::vector<CLI::Option*> repair_expert = add_repair_options(*sub, opts->repair);
   std::vector<CLI::Option*> expert = {
-      sub->add_option("--coarse-edge-ratio", c.coarse_edge_ratio,
-                      "When no labeling is valid and an edge of the surface is longer than the bounding-box "
-                      "diagonal over this, split every triangle into four at its edges' midpoints until none is "
-                      "(the surface does not move) and construct again: a tetrahedron, a wedge or a pyramid has "
-                      "too few triangles to label (0: never)")
-          ->capture_default_str()
-          ->check(cli::non_negative()),
+      add_coarse_edge_option(*sub, c),
       sub->add_option("--predeform-retry", c.predeform_retry,
                       "When --predeform is 0, also plan the attempts on the model pre-deformed by this many "
                       "iterations, with estimate-driven unfolding (0: never); the attempts run most promising first")

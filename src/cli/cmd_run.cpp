@@ -293,14 +293,7 @@ void register_run(CLI::App& app) {
                   "tried (0: no limit, and the result does not depend on the machine's speed)")
       ->capture_default_str()
       ->check(cli::non_negative());
-  CLI::Option* coarse =
-      sub->add_option("--coarse-edge-ratio", c.coarse_edge_ratio,
-                      "When no labeling is valid and an edge of the surface is longer than the bounding-box "
-                      "diagonal over this, split every triangle into four at its edges' midpoints until none is "
-                      "(the surface does not move) and construct again: a tetrahedron, a wedge or a pyramid has "
-                      "too few triangles to label (0: never)")
-          ->capture_default_str()
-          ->check(cli::non_negative());
+  CLI::Option* coarse = add_coarse_edge_option(*sub, c);
   sub->add_option("--lambda-min", opts->run.simplify_options.align.lambda_min,
                   "Simplification: stop before an iteration whose lambda is below this (0: until convergence)")
       ->capture_default_str()
