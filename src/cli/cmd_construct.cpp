@@ -84,7 +84,8 @@ void run_construct(const ConstructCliOptions& o) {
        r.coarse_refinement.levels > 0
            ? nlohmann::json({{"levels", r.coarse_refinement.levels},
                              {"triangles_before", r.coarse_refinement.triangles_before},
-                             {"triangles_after", r.coarse_refinement.triangles_after}})
+                             {"triangles_after", r.coarse_refinement.triangles_after},
+                             {"tip_corners", r.tip_corners}})
            : nlohmann::json(nullptr)},
       {"refine", {{"split_edges", r.refine.split_edges}, {"split_tets", r.refine.split_tets}}},
       {"split_boundary_triangles", r.split_triangles},

@@ -85,7 +85,9 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
       {"construct_attempt", r.construct_attempt},
       {"construct_attempts", known(r.construct_attempts)},
       {"coarse_surface_refined",
-       r.coarse_levels > 0 ? nlohmann::json({{"levels", r.coarse_levels}, {"triangles", r.coarse_triangles}})
+       r.coarse_levels > 0 ? nlohmann::json({{"levels", r.coarse_levels},
+                                           {"triangles", r.coarse_triangles},
+                                           {"tip_corners", r.coarse_tip_corners}})
                            : nlohmann::json(nullptr)},
       {"simplify_step", r.simplify_step},
       {"simplify_tried", r.simplify_tried},
@@ -164,7 +166,8 @@ std::string summary_table(const pipeline::RunResult& r) {
       what = fmt::format("{} tets, {} charts, {} corners, isometric avg {} max {}; {} ({} attempt(s) run)", r.tets,
                          r.charts, r.corners, figure(r.isometric_average), figure(r.isometric_max),
                          r.construct_attempt, r.construct_attempts) +
-             (r.coarse_levels > 0 ? fmt::format("; the coarse surface split to {} triangles", r.coarse_triangles) : "");
+             (r.coarse_levels > 0 ? fmt::format("; the coarse surface split to {} triangles, {} sharp tips made corners",
+                                                 r.coarse_triangles, r.coarse_tip_corners) : "");
     else if (s.name == "simplify")
       what = fmt::format("{}: #D {} -> {}, #dom {} -> {}", r.simplify_step, r.hex_domains_before,
                          r.hex_domains_after, r.quad_domains_before, r.quad_domains_after);

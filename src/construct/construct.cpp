@@ -4,6 +4,7 @@
 
 #include "construct/labeling_check.h"
 #include "construct/polycube_estimate.h"
+#include "construct/tip_corners.h"
 #include "construct/turning_points.h"
 #include "core/errors.h"
 #include "core/log.h"
@@ -17,6 +18,7 @@
 #include <algorithm>
 #include <functional>
 #include <map>
+#include <numbers>
 #include <optional>
 
 namespace polycube::construct {
@@ -61,13 +63,30 @@ struct Model {
   core::TetMesh mesh;               //!< in the frame of the polycube's axes
   core::TetBoundary boundary;       //!< mesh's boundary surface
   std::vector<core::Tri> tris;      //!< its triangles in volume indices
+  //! #B label each boundary triangle is held to (-1: free) so that sharp tips become corners
+  //! (ConstructOptions::tip_corners), or empty.
+  std::vector<int> held;
+  int tips = 0;  //!< the tips held to be corners
 };
+
+//! Hold the sharp tips of the model's surface to be polycube corners (tip_corners.h).
+void hold_tip_corners(Model& m) {
+  std::vector<TipCorner> tips = find_tip_corners(m.boundary.surface);
+  m.held = tip_corner_labels(m.boundary.surface, tips);
+  m.tips = static_cast<int>(tips.size());
+  for (const TipCorner& tip : tips) {
+    std::string labels;
+    for (int l : tip.ring_labels) labels += fmt::format(" {}", label_name(l));
+    core::logger().info("construct: tip at vertex {} (angle sum {:.1f} deg) held to a corner:{} within {:.3g}",
+                        tip.vertex, tip.angle_sum * 180.0 / std::numbers::pi, labels, tip.radius);
+  }
+}
 
 //! The model rotated so its normals cluster on the axes (when asked): the labeling and the
 //! deformation work on the rotated model; the map's model positions stay the input's.
 Model rotated_model(const core::TetMesh& input, const ConstructOptions& o, AxisRotation& rotation) {
   auto& log = core::logger();
-  Model m{input, {}, {}};
+  Model m{input, {}, {}, {}, 0};
   if (o.align_axes) {
     rotation = best_axis_rotation(core::boundary(input).surface);
     log.debug("construct: axis alignment: L1 energy of the normals {:.4f}, best rotation {:.4f}", rotation.energy_before,
@@ -80,6 +99,7 @@ Model rotated_model(const core::TetMesh& input, const ConstructOptions& o, AxisR
   }
   m.boundary = core::boundary(m.mesh);
   m.tris = core::boundary_triangles(m.boundary);
+  if (o.tip_corners) hold_tip_corners(m);
   return m;
 }
 
@@ -118,8 +138,8 @@ struct AttemptLabeling {
   bool valid = false;
 };
 
-AttemptLabeling label_for_attempt(const core::TriMesh& s, const LabelingOptions& lopt, const ConstructOptions& o,
-                                  ConstructTimes& seconds) {
+AttemptLabeling label_for_attempt(const core::TriMesh& s, const LabelingOptions& lopt, const std::vector<int>& held,
+                                  const ConstructOptions& o, ConstructTimes& seconds) {
   AttemptLabeling out;
   core::Stopwatch clock;
   const LabelingResult lab = graph_cut_labeling(s, lopt);
@@ -127,6 +147,7 @@ AttemptLabeling label_for_attempt(const core::TriMesh& s, const LabelingOptions&
   clock.restart();
   RepairOptions ropt = o.repair;
   ropt.energy = lopt;
+  ropt.held = held;
   out.repair = repair_labeling(s, lab.labels, ropt);
   if (out.repair.valid()) {
     out.estimate = estimate_polycube(s, out.repair.labels);
@@ -213,9 +234,9 @@ LabeledAttempt label_attempt(const Attempt& attempt, const Model& model, Predefo
   // keeps the model's, so chart boundaries stay smooth).
   LabelingOptions lopt = o.labeling;
   lopt.compactness = attempt.compactness;
-  lopt.penalty.clear();
+  lopt.penalty = steering_penalty(model.held);
   if (la.predeform) lopt.data_normals = triangle_normals(la.predeform->points, model.tris);
-  la.labeling = label_for_attempt(model.boundary.surface, lopt, o, seconds);
+  la.labeling = label_for_attempt(model.boundary.surface, lopt, model.held, o, seconds);
   const RepairResult& rep = la.labeling.repair;
   if (!la.labeling.valid)
     la.failure = fmt::format("{}: no valid labeling ({} defect(s): {})", attempt.name(), rep.check.defects.size(),
@@ -435,6 +456,7 @@ ConstructResult construct_from_prepared(const core::TetMesh& input, const Constr
   const core::Stopwatch clock;
   ConstructResult res;
   const Model model = rotated_model(input, o, res.axis_rotation);
+  res.tip_corners = model.tips;
   std::vector<std::string> failures;
   const std::optional<AttemptResult> kept = run_plan(plan_attempts(o), model, o, clock, res, failures);
   res.tried = joined(failures);
@@ -551,8 +573,10 @@ ConstructResult construct_polycube(const core::TriMesh& surface, const Construct
         done.longest_edge_after);
   }
   const double failed = clock.seconds();
+  ConstructOptions coarse = o;
+  coarse.tip_corners = true;  // every vertex of the input is a feature of the shape
   try {
-    ConstructResult res = construct_tetrahedralized(*finer, o);
+    ConstructResult res = construct_tetrahedralized(*finer, coarse);
     res.coarse_refinement = done;
     res.seconds.total += failed;
     return res;

@@ -82,6 +82,11 @@ struct ConstructOptions {
   //! bounding-box diagonal over this, every triangle is split into four until none is, and the
   //! construction starts again (coarse_surface.h; 0: never).
   double coarse_edge_ratio = 20.0;
+  //! Steer the labeling so that every vertex at least as sharp as a cube's corner becomes a
+  //! polycube corner (tip_corners.h). Construct turns it on for the surface it refined as too
+  //! coarse, whose vertices are all features of the input; on a fine surface a sharp vertex is
+  //! as likely to be noise.
+  bool tip_corners = false;
   int max_attempts = 8;             //!< deformations in all, at most
   //! Testing only: the first this many deformed attempts count as failed whatever they gave,
   //! so the tests reach the fallback attempts and the budget on small inputs (the hidden
@@ -138,6 +143,7 @@ struct ConstructResult {
   double conformal_max = 0;
   ConstructTimes seconds;
   SurfaceRefinement coarse_refinement;  //!< surface inputs too coarse for the labeling (levels 0: none)
+  int tip_corners = 0;                  //!< sharp tips made polycube corners (ConstructOptions::tip_corners)
 };
 
 //! No attempt reached a valid labeling (the defects of the first are in the message).

@@ -41,6 +41,7 @@ class Repairer {
     for (const Defect& d : check.defects) {
       for (int ring = 0; ring <= max_ring_; ++ring) {
         std::vector<Move> moves = candidates(check, d, ring);
+        drop_held(moves);
         if (moves.empty()) continue;
         int best = -1;
         int best_defects = current;
@@ -93,8 +94,18 @@ class Repairer {
 
   int max_ring_ = 6;
   const core::TriMesh* surface_ = nullptr;  //!< set: rank tied moves by the polycube estimate
+  std::vector<int> held_;                   //!< RepairOptions::held
 
  private:
+  //! Moves without the triangles held to another label; moves left with nothing to change go.
+  void drop_held(std::vector<Move>& moves) const {
+    if (held_.empty()) return;
+    for (Move& m : moves)
+      std::erase_if(m.triangles, [&](int t) { return held_[t] >= 0 && held_[t] != m.label; });
+    std::erase_if(moves, [&](const Move& m) {
+      return std::all_of(m.triangles.begin(), m.triangles.end(), [&](int t) { return labels_[t] == m.label; });
+    });
+  }
   //! Whether a move takes the last triangles of a label. Every closed polycube has a chart facing
   //! each of the six directions (the surface's extreme points along each axis), so such a move
   //! leads away from every valid labeling, however many defects it seems to remove: taken, it
@@ -291,6 +302,8 @@ RepairResult repair_labeling(const core::TriMesh& surface, const std::vector<int
   Repairer rep(g, en, labels);
   rep.max_ring_ = std::max(0, options.max_ring);
   if (options.score_by_estimate) rep.surface_ = &surface;
+  PC_REQUIRE(options.held.empty() || options.held.size() == labels.size(), "repair_labeling: one held label per triangle");
+  rep.held_ = options.held;
   LabelingCheck check = first;
   while (!check.valid() && r.moves < options.max_moves) {
     if (!rep.step(check)) break;

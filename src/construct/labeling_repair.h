@@ -31,6 +31,9 @@ struct RepairOptions {
   //! Rank the moves that remove the most defects by the fast polycube estimate
   //! (polycube_estimate.h: least area folded), then by labeling energy; false: energy only.
   bool score_by_estimate = true;
+  //! Empty, or #T labels the moves leave alone (-1: free): a move's triangles held to another
+  //! label are dropped from it.
+  std::vector<int> held;
 };
 
 //! Result of repair_labeling().

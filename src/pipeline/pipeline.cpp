@@ -327,6 +327,7 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
     r.construct_attempts = c.attempts;
     r.coarse_levels = c.coarse_refinement.levels;
     if (c.coarse_refinement.levels > 0) r.coarse_triangles = c.coarse_refinement.triangles_after;
+    r.coarse_tip_corners = c.tip_corners;
     r.charts = c.charts;
     r.corners = c.corners;
     r.isometric_average = c.isometric_average;

@@ -112,6 +112,7 @@ struct RunResult {
   int construct_attempts = -1;         //!< attempts deformed
   int coarse_levels = 0;               //!< times a surface too coarse to label was split into four
   int coarse_triangles = -1;           //!< its triangles after that (-1: not refined)
+  int coarse_tip_corners = 0;          //!< its sharp tips made polycube corners
   // simplify (#D, #dom before/after; without simplification both are the map's own counts)
   std::string simplify_step;           //!< the step that gave the map (simplify::step_name, or "unsimplified")
   std::vector<std::string> simplify_tried;  //!< why the earlier steps failed

@@ -413,6 +413,26 @@ TEST(RunCli, ConstructFailureExitsThreeAndWritesNoMap) {
   EXPECT_NE(r.out.find("FAILED"), std::string::npos) << r.out;
 }
 
+// The same kind of solid with the defaults: its four triangles are split until they can be
+// labeled, and its tips, sharper than a cube's corners, are held to be polycube corners (left
+// inside a chart, a tip's tets stayed inverted: issue 24).
+TEST(RunCli, ATetrahedronRunsThroughWithItsTipsMadeCorners) {
+  const fs::path dir = temp_dir("tetrahedron_runs");
+  core::TriMesh tet;
+  const double h = 10.0 * std::sqrt(3.0) / 2.0;
+  tet.points = {core::Vec3(0, 0, 0), core::Vec3(10, 0, 0), core::Vec3(5, h, 0),
+                core::Vec3(5, h / 3.0, 10.0 * std::sqrt(2.0 / 3.0))};
+  tet.cells = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+  write_surface(dir / "tetrahedron.obj", tet);
+  const CliResult r = run(dir / "tetrahedron.obj", dir / "out", "--hexes 300");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("the surface is too coarse"), std::string::npos) << r.err;
+  const auto j = read_report(dir / "out");
+  EXPECT_EQ(j["coarse_surface_refined"]["tip_corners"], 4) << j["coarse_surface_refined"];
+  EXPECT_EQ(j["final"]["inverted"], 0);
+  EXPECT_GT(j["final"]["msj"].get<double>(), 0.0);
+}
+
 // No small input makes the simplification (nor, below, the optimization and the quality stage)
 // fail reliably: a failure there is a limitation of the algorithm that the algorithm's work
 // keeps moving. The hidden --inject-failure STAGE (pipeline.h) makes the stage fail at its start

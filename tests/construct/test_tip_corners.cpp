@@ -1,0 +1,183 @@
+//! Tests of the sharp tips made polycube corners (construct/tip_corners.h) and of the labels the
+//! labeling repair holds (RepairOptions::held).
+#include "construct/coarse_surface.h"
+#include "construct/construct.h"
+#include "construct/labeling.h"
+#include "construct/labeling_check.h"
+#include "construct/labeling_repair.h"
+#include "construct/tip_corners.h"
+#include "core/polycube_map.h"
+#include "support/shapes.h"
+
+#include <gtest/gtest.h>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <set>
+
+namespace polycube {
+namespace {
+
+using core::Vec3;
+
+//! A regular tetrahedron with edges 10 long, standing on the plane z = 0.
+core::TriMesh regular_tetrahedron() {
+  core::TriMesh m;
+  const double h = 10.0 * std::sqrt(3.0) / 2.0;
+  m.points = {{0, 0, 0}, {10, 0, 0}, {5, h, 0}, {5, h / 3.0, 10.0 * std::sqrt(2.0 / 3.0)}};
+  m.cells = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+  return m;
+}
+
+//! The regular tetrahedron whose edges are diagonals of the faces of a cube: each of its faces
+//! ties three axes.
+core::TriMesh cube_diagonal_tetrahedron() {
+  core::TriMesh m;
+  m.points = {{0, 0, 0}, {10, 10, 0}, {10, 0, 10}, {0, 10, 10}};
+  m.cells = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+  return m;
+}
+
+Vec3 unit_normal(const core::TriMesh& s, int t) {
+  const auto& c = s.cells[t];
+  return (s.points[c[1]] - s.points[c[0]]).cross(s.points[c[2]] - s.points[c[0]]).normalized();
+}
+
+//! A convex corner's three charts, counter-clockwise seen from outside, have directions of
+//! positive determinant (+X, +Y, +Z does; +X, +Z, +Y would be a corner turned inside out).
+double corner_determinant(int a, int b, int c) {
+  Eigen::Matrix3d m;
+  m << core::label_direction(a), core::label_direction(b), core::label_direction(c);
+  return m.determinant();
+}
+
+TEST(TipCorners, ACubesCornersAreTipsLabelledByTheirOwnFaces) {
+  const core::TriMesh box = test::make_box(2.0, 1.0, 1.0, 3);
+  const std::vector<construct::TipCorner> tips = construct::find_tip_corners(box);
+  ASSERT_EQ(tips.size(),
+            8u);  // the vertices along the edges and inside the faces are flat or straight
+  for (const construct::TipCorner& tip : tips) {
+    EXPECT_NEAR(tip.angle_sum, 1.5 * std::numbers::pi, 1e-12);
+    ASSERT_EQ(tip.ring.size(), tip.ring_labels.size());
+    for (std::size_t i = 0; i < tip.ring.size(); ++i)
+      EXPECT_EQ(tip.ring_labels[i], core::dominant_axis_label(unit_normal(box, tip.ring[i])));
+  }
+}
+
+TEST(TipCorners, ATetrahedronsTipsGetTheConvexCornerThatFitsTheirFacesBest) {
+  for (const core::TriMesh& tet : {regular_tetrahedron(), cube_diagonal_tetrahedron()}) {
+    const std::vector<construct::TipCorner> tips = construct::find_tip_corners(tet);
+    ASSERT_EQ(tips.size(), 4u);
+    for (const construct::TipCorner& tip : tips) {
+      EXPECT_NEAR(tip.angle_sum, std::numbers::pi, 1e-12);  // three angles of 60°
+      ASSERT_EQ(tip.ring.size(), 3u);
+      const auto& l = tip.ring_labels;
+      EXPECT_EQ(
+          (std::set<int>{core::label_axis(l[0]), core::label_axis(l[1]), core::label_axis(l[2])}
+               .size()),
+          3u);
+      EXPECT_GT(corner_determinant(l[0], l[1], l[2]), 0.0)
+          << "tip " << tip.vertex << " is a corner turned inside out";
+      // No convex corner fits the three faces better (the angles are equal, so the fit is the
+      // sum of n·axis).
+      const auto fit = [&](int a, int b, int c) {
+        return unit_normal(tet, tip.ring[0]).dot(core::label_direction(a)) +
+               unit_normal(tet, tip.ring[1]).dot(core::label_direction(b)) +
+               unit_normal(tet, tip.ring[2]).dot(core::label_direction(c));
+      };
+      for (int a = 0; a < 6; ++a)
+        for (int b = 0; b < 6; ++b)
+          for (int c = 0; c < 6; ++c) {
+            const std::set<int> axes{core::label_axis(a), core::label_axis(b), core::label_axis(c)};
+            if (axes.size() == 3 && corner_determinant(a, b, c) > 0)
+              EXPECT_LE(fit(a, b, c), fit(l[0], l[1], l[2]) + 1e-12);
+          }
+    }
+  }
+}
+
+TEST(TipCorners, SteeredTrianglesLieInTheirSectorsPlaneWithinAThirdOfAnEdge) {
+  construct::SurfaceRefinement done;
+  const core::TriMesh tet =
+      construct::subdivide_to(regular_tetrahedron(), 10.0 / 8.0, 1000000, done);
+  ASSERT_EQ(done.levels, 3);
+  std::vector<construct::TipCorner> tips = construct::find_tip_corners(tet);
+  ASSERT_EQ(tips.size(), 4u);  // the new vertices are flat
+  const std::vector<int> steered = construct::tip_corner_labels(tet, tips);
+  ASSERT_EQ(steered.size(), tet.cells.size());
+  std::vector<int> per_sector(12, 0);
+  for (int t = 0; t < tet.num_cells(); ++t) {
+    if (steered[t] < 0) continue;
+    // The one tip and ring triangle it belongs to: the same plane, within the tip's radius.
+    int owners = 0;
+    for (std::size_t k = 0; k < tips.size(); ++k) {
+      EXPECT_NEAR(tips[k].radius, 10.0 / 3.0, 1e-12);  // the nearest other corner is a tip, 10 away
+      const Vec3 centroid = (tet.points[tet.cells[t][0]] + tet.points[tet.cells[t][1]] +
+                             tet.points[tet.cells[t][2]]) /
+                            3.0;
+      if ((centroid - tet.points[tips[k].vertex]).norm() > tips[k].radius) continue;
+      for (std::size_t i = 0; i < tips[k].ring.size(); ++i)
+        if (unit_normal(tet, t).dot(unit_normal(tet, tips[k].ring[i])) > 1.0 - 1e-9) {
+          ++owners;
+          EXPECT_EQ(steered[t], tips[k].ring_labels[i]);
+          ++per_sector[3 * k + i];
+        }
+    }
+    EXPECT_EQ(owners, 1) << "triangle " << t;
+  }
+  // Each sector holds its ring triangle and more: the triangles within a third of an edge.
+  for (int n : per_sector) EXPECT_GT(n, 1);
+  EXPECT_EQ(construct::steering_penalty(steered).size(), tet.cells.size());
+  EXPECT_TRUE(construct::steering_penalty(std::vector<int>(tet.cells.size(), -1)).empty());
+}
+
+TEST(TipCorners, TheRepairKeepsTheHeldTipsCornersAndReachesAValidLabeling) {
+  construct::SurfaceRefinement done;
+  const core::TriMesh tet =
+      construct::subdivide_to(regular_tetrahedron(), 10.0 / 16.0, 1000000, done);
+  std::vector<construct::TipCorner> tips = construct::find_tip_corners(tet);
+  const std::vector<int> held = construct::tip_corner_labels(tet, tips);
+  construct::LabelingOptions lopt;
+  lopt.penalty = construct::steering_penalty(held);
+  const construct::LabelingResult cut = construct::graph_cut_labeling(tet, lopt);
+  construct::RepairOptions ropt;
+  ropt.energy = lopt;
+  ropt.held = held;
+  const construct::RepairResult r = construct::repair_labeling(tet, cut.labels, ropt);
+  EXPECT_TRUE(r.valid()) << (r.check.defects.empty() ? "" : r.check.defects.front().reason);
+  for (int t = 0; t < tet.num_cells(); ++t)
+    if (held[t] >= 0) EXPECT_EQ(r.labels[t], held[t]) << "triangle " << t;
+  // So every tip is a valid corner of the labeling.
+  const std::vector<int>& corners = r.check.layout.corners;
+  for (const construct::TipCorner& tip : tips)
+    EXPECT_TRUE(std::binary_search(corners.begin(), corners.end(), tip.vertex))
+        << "tip " << tip.vertex;
+}
+
+TEST(CoarseSurface, ATetrahedronConstructsWithItsTipsAtPolycubeCorners) {
+  construct::ConstructOptions o;
+  o.min_tets = 2000;  // enough for this shape, and quick
+  for (const core::TriMesh& tet : {regular_tetrahedron(), cube_diagonal_tetrahedron()}) {
+    const construct::ConstructResult r = construct::construct_polycube(tet, o);
+    EXPECT_TRUE(r.certificate.certified());
+    EXPECT_GT(r.coarse_refinement.levels, 0);
+    // The tips are the map's first four points (the surface's vertices come first, as they
+    // were); around each, the boundary carries one label per axis.
+    for (int tip = 0; tip < 4; ++tip) {
+      ASSERT_EQ(r.map.model[tip], tet.points[tip]);
+      std::set<int> axes, labels;
+      for (std::size_t b = 0; b < r.boundary.size(); ++b)
+        if (std::find(r.boundary[b].begin(), r.boundary[b].end(), tip) != r.boundary[b].end()) {
+          labels.insert(r.labels[b]);
+          axes.insert(core::label_axis(r.labels[b]));
+        }
+      EXPECT_EQ(labels.size(), 3u) << "tip " << tip;
+      EXPECT_EQ(axes.size(), 3u) << "tip " << tip;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace polycube
