@@ -31,6 +31,8 @@ MilpStatus infeasible_or_unbounded(const OsiClpSolverInterface& original, const 
   OsiClpSolverInterface relaxation(original);
   relaxation.messageHandler()->setLogLevel(0);
   relaxation.getModelPtr()->messageHandler()->setLogLevel(0);
+  // A deadline of its own: the copy keeps the original's, which may have passed.
+  relaxation.getModelPtr()->setMaximumWallSeconds(options.time_limit > 0 ? options.time_limit : -1.0);
   relaxation.initialSolve();
   if (!relaxation.isProvenDualInfeasible()) return MilpStatus::Infeasible;
   OsiClpSolverInterface feasibility(original);
@@ -84,6 +86,39 @@ double objective_of(const LinearProgram& p, const std::vector<double>& x) {
   double c = 0.0;
   for (int j = 0; j < p.num_variables(); ++j) c += p.cost[j] * x[j];
   return c;
+}
+
+//! ClpModel::status() of a solve stopped on its iteration or time limit.
+constexpr int kStoppedOnLimit = 3;
+
+//! The least the objective can be over the variables' bounds alone (the rows ignored): a valid
+//! lower bound on the optimum when nothing better was proven (-infinity when unbounded below).
+double bound_over_the_box(const LinearProgram& p) {
+  double b = 0.0;
+  for (int j = 0; j < p.num_variables(); ++j) {
+    if (p.cost[j] == 0.0) continue;
+    const double end = p.cost[j] > 0.0 ? p.lower[j] : p.upper[j];
+    if (std::isinf(end)) return -kInfinity;
+    b += p.cost[j] * end;
+  }
+  return b;
+}
+
+//! The result when the time limit ran out: `best` (branch and cut's incumbent, or null) or else
+//! the start when it is feasible (else no point), not proven optimal, with `bound`.
+MilpResult stopped_at_the_limit(const LinearProgram& p, const MilpOptions& options, const double* best,
+                                double bound, std::string solver) {
+  MilpResult res;
+  res.solver = std::move(solver);
+  res.status = MilpStatus::Stopped;
+  if (best != nullptr) {
+    res.x.assign(best, best + p.num_variables());
+  } else if (!options.start.empty() && satisfies(p, options.start)) {
+    res.x = options.start;
+  }
+  if (!res.x.empty()) res.objective = objective_of(p, res.x);
+  res.bound = bound;
+  return res;
 }
 
 }  // namespace
@@ -188,7 +223,15 @@ MilpResult solve_program(const LinearProgram& p, const MilpOptions& options) {
   // optimum: no integer point can cost less than the relaxation's. Otherwise branch and cut
   // starts from its basis.
   const core::Stopwatch clock;
+  // CBC checks its limit only between nodes, so the relaxation gets the limit itself (a wall-
+  // clock deadline that CBC's copies of the solver keep): a degenerate relaxation of the padding
+  // problem ran in the primal simplex for over 10 minutes under a 60 s limit.
+  if (options.time_limit > 0) si.getModelPtr()->setMaximumWallSeconds(options.time_limit);
   si.initialSolve();
+  PC_REQUIRE(options.start.empty() || static_cast<int>(options.start.size()) == n, "start solution has the wrong size");
+  if (si.getModelPtr()->status() == kStoppedOnLimit)
+    return stopped_at_the_limit(p, options, nullptr, bound_over_the_box(p),
+                                "CLP dual simplex (LP relaxation stopped at the time limit)");
   if (si.isProvenOptimal()) {
     std::vector<double> x = integral_solution(p, si.getColSolution());
     if (!x.empty()) {
@@ -214,13 +257,17 @@ MilpResult solve_program(const LinearProgram& p, const MilpOptions& options) {
   if (options.time_limit > 0) model.setMaximumSeconds(std::max(options.time_limit - clock.seconds(), 1e-3));
   if (options.relative_gap > 0) model.setAllowableFractionGap(options.relative_gap);
   if (!options.start.empty()) {
-    PC_REQUIRE(static_cast<int>(options.start.size()) == n, "start solution has the wrong size");
     // Checked here in one pass over the rows; CBC's own check re-solves the LP with the
     // integers fixed (seconds on the padding problem).
     if (satisfies(p, options.start))
       model.setBestSolution(options.start.data(), n, objective_of(p, options.start), false);
   }
+  const double relaxation_bound = si.isProvenOptimal() ? si.getObjValue() : bound_over_the_box(p);
   model.branchAndBound();
+  // Past the deadline the LPs inside branch and cut were cut short, and CBC then takes a stopped
+  // LP for an infeasible node: neither its verdict nor its bound is a proof; the relaxation's is.
+  if (options.time_limit > 0 && clock.seconds() >= options.time_limit)
+    return stopped_at_the_limit(p, options, model.bestSolution(), relaxation_bound, res.solver);
   if (model.isProvenOptimal()) {
     res.status = MilpStatus::Optimal;
   } else if (model.isProvenInfeasible()) {

@@ -64,7 +64,8 @@ struct MilpResult {
   //! Best lower bound on the optimum that branch and cut proved (= objective when Optimal).
   double bound = 0.0;
   //! "CLP dual simplex", "CLP dual simplex (integral LP relaxation)", "CLP dual simplex (LP
-  //! relaxation)" (an infeasible relaxation) or "CBC branch and cut"
+  //! relaxation)" (an infeasible relaxation), "CLP dual simplex (LP relaxation stopped at the
+  //! time limit)" (Stopped, with the start as x when it is feasible) or "CBC branch and cut"
   std::string solver;
 };
 
