@@ -58,19 +58,29 @@ std::vector<int> best_corner_labels(const core::TriMesh& s, const std::vector<in
                                     const std::vector<core::Vec3>& normals) {
   const int k = static_cast<int>(ring.size());
   std::vector<std::array<double, 6>> fit(ring.size());
+  core::Vec3 pointing = core::Vec3::Zero();  // where the tip points: its faces' normals, by angle
   for (int i = 0; i < k; ++i) {
     const double w = corner_angle(s, ring[i], position_in(s.cells[ring[i]], v));
+    pointing += w * normals[ring[i]];
     for (int l = 0; l < kNumLabels; ++l) fit[i][l] = w * normals[ring[i]].dot(label_direction(l));
   }
+  // Faces that tie several axes (a tetrahedron's, on the diagonals of a cube's faces) fit several
+  // corners equally: then the corner whose diagonal is closest to where the tip points wins, so
+  // the tips of one solid take different corners.
+  constexpr double kTie = 1e-9;
   double best = -std::numeric_limits<double>::infinity();
+  double best_agreement = -std::numeric_limits<double>::infinity();
   std::vector<int> labels;
   for (int signs = 0; signs < 8; ++signs) {
     // label of axis a: 2a, +1 when that axis's sign is negative (bit a of `signs`).
     std::array<int, 3> label{};
-    for (int a = 0; a < 3; ++a) label[a] = 2 * a + ((signs >> a) & 1);
+    double agreement = 0.0;
+    for (int a = 0; a < 3; ++a) {
+      label[a] = 2 * a + ((signs >> a) & 1);
+      agreement += pointing.dot(label_direction(label[a]));
+    }
     const bool even = (__builtin_popcount(static_cast<unsigned>(signs)) % 2) == 0;
-    const std::array<int, 3> order =
-        even ? std::array<int, 3>{0, 1, 2} : std::array<int, 3>{0, 2, 1};
+    const std::array<int, 3> order = even ? std::array<int, 3>{0, 1, 2} : std::array<int, 3>{0, 2, 1};
     for (int start = 0; start < k; ++start)
       for (int a = 1; a < k - 1; ++a)
         for (int b = 1; a + b < k; ++b) {
@@ -79,8 +89,10 @@ std::vector<int> best_corner_labels(const core::TriMesh& s, const std::vector<in
             const int sector = i < a ? 0 : i < a + b ? 1 : 2;
             score += fit[(start + i) % k][label[order[sector]]];
           }
-          if (score <= best) continue;
-          best = score;
+          const bool better = score > best + kTie || (score >= best - kTie && agreement > best_agreement + kTie);
+          if (!better) continue;
+          best = std::max(best, score);
+          best_agreement = agreement;
           labels.assign(ring.size(), 0);
           for (int i = 0; i < k; ++i) {
             const int sector = i < a ? 0 : i < a + b ? 1 : 2;
