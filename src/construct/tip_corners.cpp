@@ -80,7 +80,8 @@ std::vector<int> best_corner_labels(const core::TriMesh& s, const std::vector<in
       agreement += pointing.dot(label_direction(label[a]));
     }
     const bool even = (__builtin_popcount(static_cast<unsigned>(signs)) % 2) == 0;
-    const std::array<int, 3> order = even ? std::array<int, 3>{0, 1, 2} : std::array<int, 3>{0, 2, 1};
+    const std::array<int, 3> order =
+        even ? std::array<int, 3>{0, 1, 2} : std::array<int, 3>{0, 2, 1};
     for (int start = 0; start < k; ++start)
       for (int a = 1; a < k - 1; ++a)
         for (int b = 1; a + b < k; ++b) {
@@ -89,7 +90,8 @@ std::vector<int> best_corner_labels(const core::TriMesh& s, const std::vector<in
             const int sector = i < a ? 0 : i < a + b ? 1 : 2;
             score += fit[(start + i) % k][label[order[sector]]];
           }
-          const bool better = score > best + kTie || (score >= best - kTie && agreement > best_agreement + kTie);
+          const bool better =
+              score > best + kTie || (score >= best - kTie && agreement > best_agreement + kTie);
           if (!better) continue;
           best = std::max(best, score);
           best_agreement = agreement;

@@ -98,6 +98,23 @@ TEST(TipCorners, ATetrahedronsTipsGetTheConvexCornerThatFitsTheirFacesBest) {
   }
 }
 
+TEST(TipCorners, TipsWhoseFacesTieTheAxesTakeTheCornerTheyPointTo) {
+  // Every face of this tetrahedron is equally far from three axes, so every sign choice fits a
+  // tip equally; the tips point to four different corners of the cube around it, and take them.
+  const core::TriMesh tet = cube_diagonal_tetrahedron();
+  const Vec3 centre = (tet.points[0] + tet.points[1] + tet.points[2] + tet.points[3]) / 4.0;
+  std::set<std::array<int, 3>> corners;
+  for (const construct::TipCorner& tip : construct::find_tip_corners(tet)) {
+    std::array<int, 3> signs{};
+    for (int l : tip.ring_labels) signs[core::label_axis(l)] = l % 2 == 0 ? 1 : -1;
+    const Vec3 points = tet.points[tip.vertex] - centre;
+    for (int a = 0; a < 3; ++a)
+      EXPECT_EQ(signs[a], points[a] > 0 ? 1 : -1) << "tip " << tip.vertex << " axis " << a;
+    corners.insert(signs);
+  }
+  EXPECT_EQ(corners.size(), 4u);
+}
+
 TEST(TipCorners, SteeredTrianglesLieInTheirSectorsPlaneWithinAThirdOfAnEdge) {
   construct::SurfaceRefinement done;
   const core::TriMesh tet =
