@@ -53,31 +53,61 @@ std::vector<int> ordered_ring(const core::TriMesh& s, const core::Adjacency& ver
   return ring;
 }
 
-//! The labels of the best corner for a ring (see find_tip_corners()).
+//! A face's plane and the label a tip gave it.
+struct HeldFace {
+  core::Vec3 normal;
+  double offset = 0.0;  //!< normal · (a point of the plane)
+  int label = -1;
+};
+
+//! How well a corner fits a tip, compared in this order: the fit of the labels to the faces,
+//! how close the corner's diagonal is to where the tip points, and the angle of faces whose
+//! plane an earlier tip gave the same label.
+struct CornerRank {
+  double fit = -std::numeric_limits<double>::infinity();
+  double pointing = -std::numeric_limits<double>::infinity();
+  double consistency = -std::numeric_limits<double>::infinity();
+};
+
+bool ahead(const CornerRank& a, const CornerRank& b) {
+  constexpr double kTie = 1e-9;  // sums of a few products of unit vectors and angles
+  if (std::abs(a.fit - b.fit) > kTie) return a.fit > b.fit;
+  if (std::abs(a.pointing - b.pointing) > kTie) return a.pointing > b.pointing;
+  return a.consistency > b.consistency + kTie;
+}
+
+//! The labels of the best corner for a ring (see find_tip_corners()). Faces that tie several
+//! axes fit several corners equally: a tetrahedron's on the diagonals of a cube's faces fit all
+//! eight, and the corner the tip points to keeps its four tips on four corners; a wedge's ridge
+//! points between two corners, and the labels its other end gave the same faces keep the
+//! ridge one polycube edge instead of a twisted one.
 std::vector<int> best_corner_labels(const core::TriMesh& s, const std::vector<int>& ring, int v,
-                                    const std::vector<core::Vec3>& normals) {
+                                    const std::vector<core::Vec3>& normals,
+                                    const std::vector<HeldFace>& held, double plane_tolerance) {
   const int k = static_cast<int>(ring.size());
   std::vector<std::array<double, 6>> fit(ring.size());
+  std::vector<double> weight(ring.size());
+  std::vector<std::array<bool, 6>> held_before(ring.size(), std::array<bool, 6>{});
   core::Vec3 pointing = core::Vec3::Zero();  // where the tip points: its faces' normals, by angle
   for (int i = 0; i < k; ++i) {
-    const double w = corner_angle(s, ring[i], position_in(s.cells[ring[i]], v));
-    pointing += w * normals[ring[i]];
-    for (int l = 0; l < kNumLabels; ++l) fit[i][l] = w * normals[ring[i]].dot(label_direction(l));
+    const core::Vec3& n = normals[ring[i]];
+    weight[i] = corner_angle(s, ring[i], position_in(s.cells[ring[i]], v));
+    pointing += weight[i] * n;
+    for (int l = 0; l < kNumLabels; ++l) fit[i][l] = weight[i] * n.dot(label_direction(l));
+    for (const HeldFace& h : held)
+      if (h.normal.dot(n) > 1.0 - 1e-9 &&
+          std::abs(h.offset - n.dot(s.points[v])) <= plane_tolerance)
+        held_before[i][h.label] = true;
   }
-  // Faces that tie several axes (a tetrahedron's, on the diagonals of a cube's faces) fit several
-  // corners equally: then the corner whose diagonal is closest to where the tip points wins, so
-  // the tips of one solid take different corners.
-  constexpr double kTie = 1e-9;
-  double best = -std::numeric_limits<double>::infinity();
-  double best_agreement = -std::numeric_limits<double>::infinity();
-  std::vector<int> labels;
+  CornerRank best;
+  std::vector<int> labels, candidate(ring.size());
   for (int signs = 0; signs < 8; ++signs) {
     // label of axis a: 2a, +1 when that axis's sign is negative (bit a of `signs`).
     std::array<int, 3> label{};
-    double agreement = 0.0;
+    CornerRank rank{0.0, 0.0, 0.0};
     for (int a = 0; a < 3; ++a) {
       label[a] = 2 * a + ((signs >> a) & 1);
-      agreement += pointing.dot(label_direction(label[a]));
+      rank.pointing += pointing.dot(label_direction(label[a]));
     }
     const bool even = (__builtin_popcount(static_cast<unsigned>(signs)) % 2) == 0;
     const std::array<int, 3> order =
@@ -85,21 +115,17 @@ std::vector<int> best_corner_labels(const core::TriMesh& s, const std::vector<in
     for (int start = 0; start < k; ++start)
       for (int a = 1; a < k - 1; ++a)
         for (int b = 1; a + b < k; ++b) {
-          double score = 0.0;
+          rank.fit = rank.consistency = 0.0;
           for (int i = 0; i < k; ++i) {
             const int sector = i < a ? 0 : i < a + b ? 1 : 2;
-            score += fit[(start + i) % k][label[order[sector]]];
+            const int j = (start + i) % k;
+            candidate[j] = label[order[sector]];
+            rank.fit += fit[j][candidate[j]];
+            if (held_before[j][candidate[j]]) rank.consistency += weight[j];
           }
-          const bool better =
-              score > best + kTie || (score >= best - kTie && agreement > best_agreement + kTie);
-          if (!better) continue;
-          best = std::max(best, score);
-          best_agreement = agreement;
-          labels.assign(ring.size(), 0);
-          for (int i = 0; i < k; ++i) {
-            const int sector = i < a ? 0 : i < a + b ? 1 : 2;
-            labels[(start + i) % k] = label[order[sector]];
-          }
+          if (!ahead(rank, best)) continue;
+          best = rank;
+          labels = candidate;
         }
   }
   return labels;
@@ -145,6 +171,8 @@ std::vector<TipCorner> find_tip_corners(const core::TriMesh& surface, int max_ri
                      .normalized();
   }
   std::vector<TipCorner> tips;
+  std::vector<HeldFace> held;  // the faces' labels the tips so far chose
+  const double plane_tolerance = 1e-9 * core::bounding_box(surface.points).extent().norm();
   for (int v = 0; v < surface.num_points(); ++v) {
     const auto around = vertex_triangles[v];
     if (around.size() < 3 || static_cast<int>(around.size()) > max_ring ||
@@ -155,7 +183,11 @@ std::vector<TipCorner> find_tip_corners(const core::TriMesh& surface, int max_ri
     tip.angle_sum = sums[v];
     tip.ring = ordered_ring(surface, vertex_triangles, v);
     if (tip.ring.empty()) continue;
-    tip.ring_labels = best_corner_labels(surface, tip.ring, v, normals);
+    tip.ring_labels = best_corner_labels(surface, tip.ring, v, normals, held, plane_tolerance);
+    for (std::size_t i = 0; i < tip.ring.size(); ++i) {
+      const core::Vec3& n = normals[tip.ring[i]];
+      held.push_back({n, n.dot(surface.points[v]), tip.ring_labels[i]});
+    }
     tips.push_back(std::move(tip));
   }
   return tips;

@@ -5,8 +5,10 @@
 #include "construct/labeling.h"
 #include "construct/labeling_check.h"
 #include "construct/labeling_repair.h"
+#include "construct/tetrahedralize.h"
 #include "construct/tip_corners.h"
 #include "core/polycube_map.h"
+#include "core/topology.h"
 #include "support/shapes.h"
 
 #include <gtest/gtest.h>
@@ -113,6 +115,54 @@ TEST(TipCorners, TipsWhoseFacesTieTheAxesTakeTheCornerTheyPointTo) {
     corners.insert(signs);
   }
   EXPECT_EQ(corners.size(), 4u);
+}
+
+TEST(TipCorners, TheTwoEndsOfARidgeGiveItsFacesTheSameLabels) {
+  // A wedge: its ridge's ends point straight between two corners (-X or +X, ±Y, +Z), both of
+  // which fit equally. Ends that chose differently would twist the ridge's polycube edge.
+  // Which end decides first and where each ring starts depend on the numbering: every cyclic
+  // shift of the vertex numbers and of the triangles' order is tried.
+  const std::vector<Vec3> points{{0, 0, 0},  {0, 10, 0},  {0, 5, 8},
+                                 {20, 0, 0}, {20, 10, 0}, {20, 5, 8}};
+  const std::vector<core::Tri> cells{{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3},
+                                     {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}};
+  for (int shift = 0; shift < 8; ++shift) {
+    core::TriMesh wedge;
+    wedge.points.resize(6);
+    for (int v = 0; v < 6; ++v) wedge.points[(v + shift) % 6] = points[v];
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      const core::Tri& t = cells[(c + static_cast<std::size_t>(shift)) % cells.size()];
+      wedge.cells.push_back({(t[0] + shift) % 6, (t[1] + shift) % 6, (t[2] + shift) % 6});
+    }
+    // Refined, as construct does: the two ends' rings share no triangle.
+    construct::SurfaceRefinement done;
+    wedge = construct::subdivide_to(wedge, 6.0, 1000000, done);
+    ASSERT_EQ(done.levels, 2);
+    // And numbered as the boundary of its tet mesh, which construct labels.
+    wedge = core::boundary(construct::tetrahedralize(wedge).mesh).surface;
+    const std::vector<construct::TipCorner> tips = construct::find_tip_corners(wedge);
+    ASSERT_EQ(tips.size(), 6u);  // 90 + 90 + 58 degrees at each
+    const auto tip_at = [&](const Vec3& p) {
+      return *std::find_if(tips.begin(), tips.end(), [&](const construct::TipCorner& t) {
+        return wedge.points[t.vertex] == p;
+      });
+    };
+    const int ridge_a = tip_at(points[2]).vertex, ridge_b = tip_at(points[5]).vertex;
+    const construct::TipCorner a = tip_at(points[2]), b = tip_at(points[5]);
+    int shared = 0;
+    for (std::size_t i = 0; i < a.ring.size(); ++i)
+      for (std::size_t j = 0; j < b.ring.size(); ++j) {
+        const Vec3 n = unit_normal(wedge, a.ring[i]);
+        const bool same_plane =
+            n.dot(unit_normal(wedge, b.ring[j])) > 1.0 - 1e-12 &&
+            std::abs(n.dot(wedge.points[ridge_b] - wedge.points[ridge_a])) < 1e-12;
+        if (!same_plane) continue;
+        ++shared;
+        EXPECT_EQ(a.ring_labels[i], b.ring_labels[j])
+            << "shift " << shift << ": ring triangles " << a.ring[i] << " and " << b.ring[j];
+      }
+    EXPECT_GE(shared, 2) << "shift " << shift;  // both slanted sides
+  }
 }
 
 TEST(TipCorners, SteeredTrianglesLieInTheirSectorsPlaneWithinAThirdOfAnEdge) {
