@@ -162,13 +162,14 @@ AttemptLabeling label_for_attempt(const core::TriMesh& s, const LabelingOptions&
 
 //! The optional local moves on a valid labeling, run only on the attempt being deformed (they
 //! cost minutes on large models): unfolding against the estimate's folds, straightening the
-//! chart boundaries on `shape` (the pre-deformed surface when there is one).
-void refine_labeling(const core::TriMesh& s, const std::vector<core::Vec3>& shape, const Attempt& attempt,
-                     const ConstructOptions& o, RepairResult& rep, ConstructTimes& seconds) {
+//! chart boundaries on `shape` (the pre-deformed surface when there is one). The unfolding leaves
+//! the `held` labels (the tips held to be corners) as they are.
+void refine_labeling(const core::TriMesh& s, const std::vector<core::Vec3>& shape, const std::vector<int>& held,
+                     const Attempt& attempt, const ConstructOptions& o, RepairResult& rep, ConstructTimes& seconds) {
   auto& log = core::logger();
   const core::Stopwatch clock;
   if (attempt.unfold_moves > 0) {
-    UnfoldResult un = unfold_labeling(s, rep.labels, attempt.unfold_moves);
+    UnfoldResult un = unfold_labeling(s, rep.labels, attempt.unfold_moves, held);
     if (un.moves > 0) {
       log.info("construct: unfolding the labeling: {} move(s), estimate folds {} -> {} triangles", un.moves,
                un.folded_before, un.folded_after);
@@ -257,7 +258,7 @@ AttemptResult deform_attempt(const LabeledAttempt& la, const Model& model, const
     r.predeform = PredeformResult{{}, pre->iterations, pre->misalignment_before, pre->misalignment_after,
                                   pre->inverted, pre->seconds};  // its figures, not its points
   }
-  refine_labeling(model.boundary.surface, shape, la.attempt, o, rep, seconds);
+  refine_labeling(model.boundary.surface, shape, model.held, la.attempt, o, rep, seconds);
   core::logger().info("construct: attempt ({}): labeling valid ({} charts)", la.attempt.name(),
                       rep.check.layout.num_charts());
   DeformOptions deform = o.deform;

@@ -118,7 +118,11 @@ PolycubeEstimate estimate_polycube(const core::TriMesh& surface, const std::vect
   return out;
 }
 
-UnfoldResult unfold_labeling(const core::TriMesh& surface, std::vector<int> labels, int max_moves) {
+UnfoldResult unfold_labeling(const core::TriMesh& surface, std::vector<int> labels, int max_moves,
+                             const std::vector<int>& held) {
+  const auto moves_held = [&](const std::vector<int>& region, int l) {
+    return !held.empty() && std::any_of(region.begin(), region.end(), [&](int u) { return held[u] >= 0 && held[u] != l; });
+  };
   UnfoldResult r;
   const int nt = surface.num_cells();
   std::vector<std::vector<int>> vertex_tris(static_cast<std::size_t>(surface.num_points()));
@@ -157,6 +161,7 @@ UnfoldResult unfold_labeling(const core::TriMesh& surface, std::vector<int> labe
       regions.push_back(ring);
       for (const auto& region : regions) {
         for (int l : targets) {
+          if (moves_held(region, l)) continue;
           std::vector<int> trial = labels;
           for (int u : region) trial[u] = l;
           if (!check_labeling(surface, trial).valid()) {

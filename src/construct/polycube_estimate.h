@@ -45,8 +45,10 @@ struct UnfoldResult {
 //! folded triangle, give it (alone, then with the triangles of its label around its vertices)
 //! the label of an edge neighbour; a move is kept when the labeling stays valid (all three
 //! rules of labeling_check.h) and the estimate folds less area. Stops when nothing folds, no
-//! move helps, or after max_moves moves.
+//! move helps, or after max_moves moves. `held` (empty, or #T labels, -1: free): no move gives
+//! a held triangle another label.
 //! 	hrow as estimate_polycube
-UnfoldResult unfold_labeling(const core::TriMesh& surface, std::vector<int> labels, int max_moves = 50);
+UnfoldResult unfold_labeling(const core::TriMesh& surface, std::vector<int> labels, int max_moves = 50,
+                             const std::vector<int>& held = {});
 
 }  // namespace polycube::construct

@@ -5,6 +5,7 @@
 #include "construct/labeling.h"
 #include "construct/labeling_check.h"
 #include "construct/labeling_repair.h"
+#include "construct/polycube_estimate.h"
 #include "construct/tetrahedralize.h"
 #include "construct/tip_corners.h"
 #include "core/polycube_map.h"
@@ -221,6 +222,16 @@ TEST(TipCorners, TheRepairKeepsTheHeldTipsCornersAndReachesAValidLabeling) {
   for (const construct::TipCorner& tip : tips)
     EXPECT_TRUE(std::binary_search(corners.begin(), corners.end(), tip.vertex))
         << "tip " << tip.vertex;
+  // The unfolding against the estimate's folds (the pre-deformed attempts') leaves them too.
+  const construct::UnfoldResult free = construct::unfold_labeling(tet, r.labels, 50);
+  const construct::UnfoldResult kept = construct::unfold_labeling(tet, r.labels, 50, held);
+  int moved_held = 0;
+  for (int t = 0; t < tet.num_cells(); ++t) {
+    moved_held += held[t] >= 0 && free.labels[t] != held[t];
+    if (held[t] >= 0) EXPECT_EQ(kept.labels[t], held[t]) << "triangle " << t;
+  }
+  EXPECT_GT(moved_held, 0);  // left free, it does move them (47 of them here)
+  EXPECT_GT(kept.moves, 0);
 }
 
 TEST(CoarseSurface, ATetrahedronConstructsWithItsTipsAtPolycubeCorners) {
