@@ -106,6 +106,7 @@ class Repairer {
       return std::all_of(m.triangles.begin(), m.triangles.end(), [&](int t) { return labels_[t] == m.label; });
     });
   }
+
   //! Whether a move takes the last triangles of a label. Every closed polycube has a chart facing
   //! each of the six directions (the surface's extreme points along each axis), so such a move
   //! leads away from every valid labeling, however many defects it seems to remove: taken, it

@@ -30,8 +30,10 @@ struct TipCorner {
 //! that fits their ring best: for each of the 8 sign choices, the ring split into three
 //! contiguous sectors of distinct axes, in the order a convex corner of those signs has
 //! (X, Y, Z counter-clockwise seen from outside when the product of the signs is +, X, Z, Y
-//! when it is −), maximizing the sum over the ring of (angle at the tip) × n·axis. Rings of
-//! more than `max_ring` triangles are skipped. Deterministic.
+//! when it is −), maximizing the sum over the ring of (angle at the tip) × n·axis. Between
+//! corners that fit equally (to rounding), the one whose diagonal is closest to where the tip
+//! points wins, then the one that gives the ring's faces the labels earlier tips gave their
+//! planes. Rings of more than `max_ring` triangles are skipped. Deterministic.
 //! \param surface  closed, edge-manifold surface with outward orientation
 std::vector<TipCorner> find_tip_corners(const core::TriMesh& surface, int max_ring = 12);
 
