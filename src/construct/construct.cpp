@@ -516,15 +516,17 @@ ConstructResult construct_tetrahedralized(const core::TriMesh& surface, const Co
 
 //! The surface split until no edge exceeds the diagonal over `coarse_edge_ratio`, or nullopt when
 //! no edge does (the labeling failed for another reason).
+//! The most triangles a coarse surface is split into: enough for the coarsest solids (a
+//! tetrahedron ends at a few thousand triangles); a cap so that a fine surface with a few long
+//! edges is not multiplied beyond what TetGen takes.
+constexpr int kMaxCoarseTriangles = 200000;
+
 std::optional<core::TriMesh> refined_coarse_surface(const core::TriMesh& surface, const ConstructOptions& o,
                                                     SurfaceRefinement& done) {
-  // Enough for the coarsest solids (a tetrahedron ends at a few thousand triangles); a cap so
-  // that a fine surface with a few long edges is not multiplied beyond what TetGen takes.
-  constexpr int kMaxTriangles = 200000;
   if (o.coarse_edge_ratio <= 0.0) return std::nullopt;
   const double max_edge = core::bounding_box(surface.points).extent().norm() / o.coarse_edge_ratio;
   if (longest_edge(surface) <= max_edge) return std::nullopt;
-  core::TriMesh finer = subdivide_to(surface, max_edge, kMaxTriangles, done);
+  core::TriMesh finer = subdivide_to(surface, max_edge, kMaxCoarseTriangles, done);
   if (done.levels == 0) return std::nullopt;
   return finer;
 }
@@ -576,13 +578,26 @@ ConstructResult construct_polycube(const core::TriMesh& surface, const Construct
   const double failed = clock.seconds();
   ConstructOptions coarse = o;
   coarse.tip_corners = true;  // every vertex of the input is a feature of the shape
-  try {
-    ConstructResult res = construct_tetrahedralized(*finer, coarse);
-    res.coarse_refinement = done;
-    res.seconds.total += failed;
-    return res;
-  } catch (const NoValidLabeling& e) {
-    throw NoValidLabeling(e.what() + labeling_hint(surface, done));
+  for (;;) {
+    try {
+      ConstructResult res = construct_tetrahedralized(*finer, coarse);
+      res.coarse_refinement = done;
+      res.seconds.total += failed;
+      return res;
+    } catch (const NoValidLabeling& e) {
+      throw NoValidLabeling(e.what() + labeling_hint(surface, done));
+    } catch (const TetgenFailed& e) {
+      // TetGen's degenerate cases on a split surface (many coplanar points) depend on the split:
+      // a triangular bipyramid split 4, 16, 64 or 256 times stops TetGen, 1,024 times does not.
+      if (4 * finer->num_cells() > kMaxCoarseTriangles) throw;
+      SurfaceRefinement again;
+      *finer = subdivide_to(*finer, 0.5 * longest_edge(*finer), kMaxCoarseTriangles, again);
+      done.levels += again.levels;
+      done.triangles_after = again.triangles_after;
+      done.longest_edge_after = again.longest_edge_after;
+      core::logger().warn("construct: {}; every triangle split into four once more ({} triangles)", e.what(),
+                          done.triangles_after);
+    }
   }
 }
 

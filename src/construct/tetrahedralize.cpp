@@ -15,9 +15,16 @@
 #include <fmt/format.h>
 #include <Eigen/Geometry>
 
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -88,6 +95,95 @@ std::vector<int> bad_edges(const BoundaryInfo& info,
 void push_cell(TetMesh& m, const Tet& t, int label) {
   m.cells.push_back(t);
   if (!m.labels.empty()) m.labels.push_back(label);
+}
+
+//! What TetGen returned, copied out of its tetgenio (or out of the child process).
+struct TetgenOutput {
+  std::vector<double> points;  //!< 3 per point
+  std::vector<int> tets;       //!< 4 per tet
+  int error = 0;               //!< TetGen's error code (thrown as an int), 0: none
+};
+
+//! Write all of `size` bytes (false on a closed pipe or another error).
+bool write_all(int fd, const void* data, std::size_t size) {
+  const char* p = static_cast<const char*>(data);
+  while (size > 0) {
+    const ssize_t n = ::write(fd, p, size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    p += n;
+    size -= static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+//! Run TetGen in a child process and read its output back through a pipe. TetGen 1.5 as Debian
+//! builds it checks its invariants with assert(): on some degenerate inputs (a triangular
+//! bipyramid split into coplanar triangles) it aborts the whole process, which no exception can
+//! catch. In a child, the abort is the child's, and the parent reports it as a failure.
+TetgenOutput run_tetgen_isolated(const std::string& switches, tetgenio& in) {
+  int fds[2];
+  if (::pipe(fds) != 0) throw core::GeometryError("TetGen: cannot create a pipe to its process");
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    throw core::GeometryError("TetGen: cannot start its process");
+  }
+  if (pid == 0) {  // the child: TetGen, the result into the pipe, and out without cleanup
+    ::close(fds[0]);
+    const int devnull = ::open("/dev/null", O_WRONLY);  // its assert() message is not ours to print
+    if (devnull >= 0) ::dup2(devnull, STDERR_FILENO);
+    std::array<std::int64_t, 4> header{0, 0, 0, 0};  // error, points, tets, corners
+    tetgenio out;
+    try {
+      std::vector<char> sw(switches.begin(), switches.end());
+      sw.push_back('\0');
+      ::tetrahedralize(sw.data(), &in, &out);
+      header = {0, out.numberofpoints, out.numberoftetrahedra, out.numberofcorners};
+    } catch (int code) {
+      header[0] = code == 0 ? -1 : code;
+    }
+    bool ok = write_all(fds[1], header.data(), sizeof(header));
+    if (ok && header[0] == 0) {
+      ok = write_all(fds[1], out.pointlist, sizeof(REAL) * 3 * static_cast<std::size_t>(header[1])) &&
+           write_all(fds[1], out.tetrahedronlist,
+                     sizeof(int) * static_cast<std::size_t>(header[2] * header[3]));
+    }
+    ::_exit(ok ? 0 : 1);
+  }
+  ::close(fds[1]);
+  std::vector<char> bytes;
+  std::array<char, 1 << 16> chunk{};
+  for (;;) {
+    const ssize_t n = ::read(fds[0], chunk.data(), chunk.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    bytes.insert(bytes.end(), chunk.data(), chunk.data() + n);
+  }
+  ::close(fds[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFSIGNALED(status))
+    throw TetgenFailed(fmt::format("TetGen stopped on one of its internal checks (signal {}) on this surface",
+                                   WTERMSIG(status)));
+  std::array<std::int64_t, 4> header{};
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || bytes.size() < sizeof(header))
+    throw core::GeometryError("TetGen's process ended without its result");
+  std::memcpy(header.data(), bytes.data(), sizeof(header));
+  TetgenOutput result;
+  result.error = static_cast<int>(header[0]);
+  if (result.error != 0) return result;
+  const std::size_t points = 3 * static_cast<std::size_t>(header[1]);
+  const std::size_t corners = static_cast<std::size_t>(header[2] * header[3]);
+  if (header[3] != 4 || bytes.size() != sizeof(header) + sizeof(REAL) * points + sizeof(int) * corners)
+    throw core::GeometryError("TetGen's process returned a result of the wrong size");
+  result.points.resize(points);
+  result.tets.resize(corners);
+  std::memcpy(result.points.data(), bytes.data() + sizeof(header), sizeof(REAL) * points);
+  std::memcpy(result.tets.data(), bytes.data() + sizeof(header) + sizeof(REAL) * points, sizeof(int) * corners);
+  return result;
 }
 
 std::string tetgen_reason(int code) {
@@ -332,7 +428,6 @@ TetrahedralizeResult tetrahedralize(const core::TriMesh& input,
   auto& log = core::logger();
 
   tetgenio in;
-  tetgenio out;
   in.firstnumber = 0;
   in.numberofpoints = surface.num_points();
   in.pointlist = new REAL[static_cast<std::size_t>(in.numberofpoints) * 3];
@@ -371,26 +466,20 @@ TetrahedralizeResult tetrahedralize(const core::TriMesh& input,
   }
   log.info("tetrahedralize: TetGen -{} on {} points, {} triangles", switches, in.numberofpoints,
            in.numberoffacets);
-  try {
-    std::vector<char> sw(switches.begin(), switches.end());
-    sw.push_back('\0');
-    ::tetrahedralize(sw.data(), &in, &out);
-  } catch (int code) {
-    if (code == 3) throw core::InputError("TetGen: " + tetgen_reason(code));
-    throw core::GeometryError("TetGen failed: " + tetgen_reason(code));
-  }
-  if (out.numberoftetrahedra <= 0 || out.numberofcorners < 4)
+  const TetgenOutput out = run_tetgen_isolated(switches, in);
+  if (out.error == 3) throw core::InputError("TetGen: " + tetgen_reason(out.error));
+  if (out.error != 0) throw TetgenFailed("TetGen failed: " + tetgen_reason(out.error));
+  if (out.tets.empty())
     throw core::GeometryError("TetGen made no tetrahedron (is the surface enclosing a volume?)");
 
   TetrahedralizeResult result;
   TetMesh& mesh = result.mesh;
-  mesh.points.resize(static_cast<std::size_t>(out.numberofpoints));
-  for (int i = 0; i < out.numberofpoints; ++i)
-    mesh.points[i] = Vec3(out.pointlist[3 * i], out.pointlist[3 * i + 1], out.pointlist[3 * i + 2]);
-  mesh.cells.resize(static_cast<std::size_t>(out.numberoftetrahedra));
-  for (int c = 0; c < out.numberoftetrahedra; ++c)
-    for (int k = 0; k < 4; ++k)
-      mesh.cells[c][k] = out.tetrahedronlist[static_cast<std::size_t>(c) * out.numberofcorners + k];
+  mesh.points.resize(out.points.size() / 3);
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    mesh.points[i] = Vec3(out.points[3 * i], out.points[3 * i + 1], out.points[3 * i + 2]);
+  mesh.cells.resize(out.tets.size() / 4);
+  for (std::size_t c = 0; c < mesh.cells.size(); ++c)
+    for (std::size_t k = 0; k < 4; ++k) mesh.cells[c][k] = out.tets[4 * c + k];
   core::remove_unreferenced_points(mesh);
   for (auto& t : mesh.cells)
     if (signed_volume6(mesh, t) < 0.0) std::swap(t[2], t[3]);

@@ -9,11 +9,19 @@
 //!   a boundary triangle).
 //! Otherwise a polycube deformation could be forced to flatten a tet.
 
+#include "core/errors.h"
 #include "core/types.h"
 
 #include <string>
 
 namespace polycube::construct {
+
+//! TetGen failed on a surface that check_closed_surface() accepts: an error code, or an abort on
+//! one of its internal checks (it runs in a process of its own, so the abort stays there).
+class TetgenFailed : public core::GeometryError {
+ public:
+  using core::GeometryError::GeometryError;
+};
 
 //! Options of tetrahedralize().
 struct TetrahedralizeOptions {
@@ -62,7 +70,7 @@ void check_closed_surface(const core::TriMesh& surface);
 //! surface (no Steiner point on the boundary), then refine_boundary().
 //! \param surface  #V points and #F triangles (any consistent orientation)
 //! \throw core::InputError when check_closed_surface() refuses the surface
-//! \throw core::GeometryError when TetGen fails (its reason is in the message)
+//! \throw TetgenFailed when TetGen fails (its reason is in the message)
 TetrahedralizeResult tetrahedralize(const core::TriMesh& surface,
                                     const TetrahedralizeOptions& options = {});
 

@@ -19,6 +19,7 @@
 #include <cmath>
 #include <numbers>
 #include <set>
+#include <string>
 
 namespace polycube {
 namespace {
@@ -255,6 +256,38 @@ TEST(CoarseSurface, ATetrahedronConstructsWithItsTipsAtPolycubeCorners) {
       EXPECT_EQ(axes.size(), 3u) << "tip " << tip;
     }
   }
+}
+
+//! A triangular bipyramid: an equilateral equator of radius 10, apexes 12 above and below.
+core::TriMesh bipyramid() {
+  core::TriMesh m;
+  const double h = 5.0 * std::sqrt(3.0);
+  m.points = {{10, 0, 0}, {-5, h, 0}, {-5, -h, 0}, {0, 0, 12}, {0, 0, -12}};
+  m.cells = {{0, 1, 3}, {1, 2, 3}, {2, 0, 3}, {1, 0, 4}, {2, 1, 4}, {0, 2, 4}};
+  return m;
+}
+
+// TetGen 1.5 (Debian's build keeps its assert()s) aborts on this surface split 4 to 256 times:
+// tetrahedralize() runs it in a process of its own, so the abort is reported, not suffered.
+TEST(CoarseSurface, TetGenStoppingOnASplitSurfaceIsAnErrorNotACrash) {
+  construct::SurfaceRefinement done;
+  const core::TriMesh split = construct::subdivide_to(bipyramid(), 5.0, 1000000, done);
+  try {
+    const construct::TetrahedralizeResult r = construct::tetrahedralize(split);
+    EXPECT_EQ(core::boundary(r.mesh).surface.num_cells(),
+              split.num_cells());  // a TetGen without the bug
+  } catch (const construct::TetgenFailed& e) {
+    EXPECT_NE(std::string(e.what()).find("TetGen"), std::string::npos) << e.what();
+  }
+}
+
+TEST(CoarseSurface, ATriangularBipyramidConstructs) {
+  // Where TetGen stops on the split surface, construct splits it once more and goes on.
+  construct::ConstructOptions o;
+  o.min_tets = 2000;
+  const construct::ConstructResult r = construct::construct_polycube(bipyramid(), o);
+  EXPECT_TRUE(r.certificate.certified());
+  EXPECT_EQ(r.tip_corners, 5);  // the two apexes and the three vertices of the equator
 }
 
 }  // namespace
