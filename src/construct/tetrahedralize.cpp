@@ -16,12 +16,14 @@
 #include <Eigen/Geometry>
 
 #include <fcntl.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <cerrno>
+#include <csignal>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -124,6 +126,7 @@ bool write_all(int fd, const void* data, std::size_t size) {
 TetgenOutput run_tetgen_isolated(const std::string& switches, tetgenio& in) {
   int fds[2];
   if (::pipe(fds) != 0) throw core::GeometryError("TetGen: cannot create a pipe to its process");
+  const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
   if (pid < 0) {
     ::close(fds[0]);
@@ -132,6 +135,8 @@ TetgenOutput run_tetgen_isolated(const std::string& switches, tetgenio& in) {
   }
   if (pid == 0) {  // the child: TetGen, the result into the pipe, and out without cleanup
     ::close(fds[0]);
+    // Ended with the parent (an interrupted run exits at once; its TetGen must not go on).
+    if (::prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || ::getppid() != parent) ::_exit(1);
     const int devnull = ::open("/dev/null", O_WRONLY);  // its assert() message is not ours to print
     if (devnull >= 0) ::dup2(devnull, STDERR_FILENO);
     std::array<std::int64_t, 4> header{0, 0, 0, 0};  // error, points, tets, corners
