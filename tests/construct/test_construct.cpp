@@ -398,22 +398,6 @@ TEST(LabelingCheck, CornerJoiningTwoEqualAxesIsADefect) {
 
 // --- coarse surfaces: refined without moving them ---------------------------------------------
 
-//! A wedge of 8 triangles: a triangular prism 20 long on a 10-wide base, 8 high.
-core::TriMesh wedge() {
-  core::TriMesh m;
-  m.points = {{0, 0, 0}, {0, 10, 0}, {0, 5, 8}, {20, 0, 0}, {20, 10, 0}, {20, 5, 8}};
-  m.cells = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}};
-  return m;
-}
-
-//! A square pyramid of 6 triangles, 10 wide and 7 high.
-core::TriMesh pyramid() {
-  core::TriMesh m;
-  m.points = {{0, 0, 0}, {10, 0, 0}, {10, 10, 0}, {0, 10, 0}, {5, 5, 7}};
-  m.cells = {{0, 2, 1}, {0, 3, 2}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
-  return m;
-}
-
 //! Whether p lies on one of the triangles of m (in its plane, inside it), to a relative tolerance.
 bool on_surface(const core::TriMesh& m, const core::Vec3& p) {
   const double tol = 1e-12 * core::bounding_box(m.points).extent().norm();
@@ -431,7 +415,7 @@ bool on_surface(const core::TriMesh& m, const core::Vec3& p) {
 }
 
 TEST(CoarseSurface, SplittingKeepsTheSurfaceWhereItWasAndHalvesEveryEdge) {
-  const core::TriMesh w = wedge();
+  const core::TriMesh w = test::wedge();
   const double longest = construct::longest_edge(w);
   EXPECT_DOUBLE_EQ(longest, std::sqrt(500.0));  // the base's diagonal
   construct::SurfaceRefinement done;
@@ -456,7 +440,7 @@ TEST(CoarseSurface, SplittingKeepsTheSurfaceWhereItWasAndHalvesEveryEdge) {
 TEST(CoarseSurface, AWedgeAndAPyramidConstructOnceRefinedAndNotOtherwise) {
   construct::ConstructOptions o;
   o.min_tets = 2000;  // enough for these shapes, and quick
-  for (const auto& [name, shape] : {std::pair{"wedge", wedge()}, std::pair{"pyramid", pyramid()}}) {
+  for (const auto& [name, shape] : {std::pair{"wedge", test::wedge()}, std::pair{"pyramid", test::pyramid()}}) {
     const construct::ConstructResult r = construct::construct_polycube(shape, o);
     EXPECT_TRUE(r.certificate.certified()) << name;
     EXPECT_EQ(r.coarse_refinement.triangles_before, shape.num_cells()) << name;
@@ -471,7 +455,7 @@ TEST(CoarseSurface, AWedgeAndAPyramidConstructOnceRefinedAndNotOtherwise) {
         << name;
   }
   o.coarse_edge_ratio = 0.0;  // never refine: no labeling of 6 or 8 triangles is valid
-  EXPECT_THROW(construct::construct_polycube(pyramid(), o), construct::NoValidLabeling);
+  EXPECT_THROW(construct::construct_polycube(test::pyramid(), o), construct::NoValidLabeling);
 }
 
 TEST(CoarseSurface, AThinSlabThatCannotBeLabeledSaysItsThicknessIsTheCause) {

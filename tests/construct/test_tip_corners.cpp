@@ -26,15 +26,6 @@ namespace {
 
 using core::Vec3;
 
-//! A regular tetrahedron with edges 10 long, standing on the plane z = 0.
-core::TriMesh regular_tetrahedron() {
-  core::TriMesh m;
-  const double h = 10.0 * std::sqrt(3.0) / 2.0;
-  m.points = {{0, 0, 0}, {10, 0, 0}, {5, h, 0}, {5, h / 3.0, 10.0 * std::sqrt(2.0 / 3.0)}};
-  m.cells = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
-  return m;
-}
-
 //! The regular tetrahedron whose edges are diagonals of the faces of a cube: each of its faces
 //! ties three axes.
 core::TriMesh cube_diagonal_tetrahedron() {
@@ -71,7 +62,7 @@ TEST(TipCorners, ACubesCornersAreTipsLabelledByTheirOwnFaces) {
 }
 
 TEST(TipCorners, ATetrahedronsTipsGetTheConvexCornerThatFitsTheirFacesBest) {
-  for (const core::TriMesh& tet : {regular_tetrahedron(), cube_diagonal_tetrahedron()}) {
+  for (const core::TriMesh& tet : {test::regular_tetrahedron(), cube_diagonal_tetrahedron()}) {
     const std::vector<construct::TipCorner> tips = construct::find_tip_corners(tet);
     ASSERT_EQ(tips.size(), 4u);
     for (const construct::TipCorner& tip : tips) {
@@ -95,8 +86,9 @@ TEST(TipCorners, ATetrahedronsTipsGetTheConvexCornerThatFitsTheirFacesBest) {
         for (int b = 0; b < 6; ++b)
           for (int c = 0; c < 6; ++c) {
             const std::set<int> axes{core::label_axis(a), core::label_axis(b), core::label_axis(c)};
-            if (axes.size() == 3 && corner_determinant(a, b, c) > 0)
+            if (axes.size() == 3 && corner_determinant(a, b, c) > 0) {
               EXPECT_LE(fit(a, b, c), fit(l[0], l[1], l[2]) + 1e-12);
+            }
           }
     }
   }
@@ -170,7 +162,7 @@ TEST(TipCorners, TheTwoEndsOfARidgeGiveItsFacesTheSameLabels) {
 TEST(TipCorners, SteeredTrianglesLieInTheirSectorsPlaneWithinAThirdOfAnEdge) {
   construct::SurfaceRefinement done;
   const core::TriMesh tet =
-      construct::subdivide_to(regular_tetrahedron(), 10.0 / 8.0, 1000000, done);
+      construct::subdivide_to(test::regular_tetrahedron(), 10.0 / 8.0, 1000000, done);
   ASSERT_EQ(done.levels, 3);
   std::vector<construct::TipCorner> tips = construct::find_tip_corners(tet);
   ASSERT_EQ(tips.size(), 4u);  // the new vertices are flat
@@ -205,7 +197,7 @@ TEST(TipCorners, SteeredTrianglesLieInTheirSectorsPlaneWithinAThirdOfAnEdge) {
 TEST(TipCorners, TheRepairKeepsTheHeldTipsCornersAndReachesAValidLabeling) {
   construct::SurfaceRefinement done;
   const core::TriMesh tet =
-      construct::subdivide_to(regular_tetrahedron(), 10.0 / 16.0, 1000000, done);
+      construct::subdivide_to(test::regular_tetrahedron(), 10.0 / 16.0, 1000000, done);
   std::vector<construct::TipCorner> tips = construct::find_tip_corners(tet);
   const std::vector<int> held = construct::tip_corner_labels(tet, tips);
   construct::LabelingOptions lopt;
@@ -217,7 +209,9 @@ TEST(TipCorners, TheRepairKeepsTheHeldTipsCornersAndReachesAValidLabeling) {
   const construct::RepairResult r = construct::repair_labeling(tet, cut.labels, ropt);
   EXPECT_TRUE(r.valid()) << (r.check.defects.empty() ? "" : r.check.defects.front().reason);
   for (int t = 0; t < tet.num_cells(); ++t)
-    if (held[t] >= 0) EXPECT_EQ(r.labels[t], held[t]) << "triangle " << t;
+    if (held[t] >= 0) {
+      EXPECT_EQ(r.labels[t], held[t]) << "triangle " << t;
+    }
   // So every tip is a valid corner of the labeling.
   const std::vector<int>& corners = r.check.layout.corners;
   for (const construct::TipCorner& tip : tips)
@@ -229,7 +223,9 @@ TEST(TipCorners, TheRepairKeepsTheHeldTipsCornersAndReachesAValidLabeling) {
   int moved_held = 0;
   for (int t = 0; t < tet.num_cells(); ++t) {
     moved_held += held[t] >= 0 && free.labels[t] != held[t];
-    if (held[t] >= 0) EXPECT_EQ(kept.labels[t], held[t]) << "triangle " << t;
+    if (held[t] >= 0) {
+      EXPECT_EQ(kept.labels[t], held[t]) << "triangle " << t;
+    }
   }
   EXPECT_GT(moved_held, 0);  // left free, it does move them (47 of them here)
   EXPECT_GT(kept.moves, 0);
@@ -238,7 +234,7 @@ TEST(TipCorners, TheRepairKeepsTheHeldTipsCornersAndReachesAValidLabeling) {
 TEST(CoarseSurface, ATetrahedronConstructsWithItsTipsAtPolycubeCorners) {
   construct::ConstructOptions o;
   o.min_tets = 2000;  // enough for this shape, and quick
-  for (const core::TriMesh& tet : {regular_tetrahedron(), cube_diagonal_tetrahedron()}) {
+  for (const core::TriMesh& tet : {test::regular_tetrahedron(), cube_diagonal_tetrahedron()}) {
     const construct::ConstructResult r = construct::construct_polycube(tet, o);
     EXPECT_TRUE(r.certificate.certified());
     EXPECT_GT(r.coarse_refinement.levels, 0);

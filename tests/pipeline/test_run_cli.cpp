@@ -418,11 +418,7 @@ TEST(RunCli, ConstructFailureExitsThreeAndWritesNoMap) {
 // inside a chart, a tip's tets stayed inverted: issue 24).
 TEST(RunCli, ATetrahedronRunsThroughWithItsTipsMadeCorners) {
   const fs::path dir = temp_dir("tetrahedron_runs");
-  core::TriMesh tet;
-  const double h = 10.0 * std::sqrt(3.0) / 2.0;
-  tet.points = {core::Vec3(0, 0, 0), core::Vec3(10, 0, 0), core::Vec3(5, h, 0),
-                core::Vec3(5, h / 3.0, 10.0 * std::sqrt(2.0 / 3.0))};
-  tet.cells = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+  const core::TriMesh tet = test::regular_tetrahedron();
   write_surface(dir / "tetrahedron.obj", tet);
   const CliResult r = run(dir / "tetrahedron.obj", dir / "out", "--hexes 300");
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -103,29 +103,6 @@ std::string quirky_obj() {
   return s.str();
 }
 
-//! Coarse CAD-like solids: every triangle is refined before the labeling, and the tips sharper
-//! than a cube's corner are held to be polycube corners.
-core::TriMesh tetrahedron() {
-  core::TriMesh m;
-  m.points = {{0, 0, 0}, {10, 0, 0}, {5, 8.66, 0}, {5, 2.887, 8.165}};
-  m.cells = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
-  return m;
-}
-
-core::TriMesh wedge() {
-  core::TriMesh m;
-  m.points = {{0, 0, 0}, {0, 10, 0}, {0, 5, 8}, {20, 0, 0}, {20, 10, 0}, {20, 5, 8}};
-  m.cells = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}};
-  return m;
-}
-
-core::TriMesh pyramid() {
-  core::TriMesh m;
-  m.points = {{0, 0, 0}, {10, 0, 0}, {10, 10, 0}, {0, 10, 0}, {5, 5, 7}};
-  m.cells = {{0, 2, 1}, {0, 3, 2}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
-  return m;
-}
-
 struct Case {
   std::string name;
   std::function<void(const fs::path&)> write;
@@ -148,9 +125,9 @@ std::vector<Case> corpus() {
       {"two_holes", mesh(two_holes(box())), "--repair holes"},
       {"overlapping", mesh(overlapping()), "--repair wrap --wrap-alpha 0.05"},
       {"pinched", mesh(pinched()), "--repair wrap --wrap-alpha 0.05"},
-      {"tetrahedron", mesh(tetrahedron()), ""},
-      {"wedge", mesh(wedge()), ""},
-      {"pyramid", mesh(pyramid()), ""},
+      {"tetrahedron", mesh(test::regular_tetrahedron()), ""},
+      {"wedge", mesh(test::wedge()), ""},
+      {"pyramid", mesh(test::pyramid()), ""},
       // two defects combined
       {"soup_inward", mesh(test::soup_of(test::turned(box()))), ""},
       {"soup_degenerate", mesh(test::soup_of(with_degenerate_and_repeated(box()))), ""},

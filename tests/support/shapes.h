@@ -123,4 +123,30 @@ inline core::TriMesh soup_of(const core::TriMesh& m) {
   return s;
 }
 
+//! Coarse CAD-like solids, too coarse to label as they are (construct refines them).
+//! A wedge of 8 triangles: a triangular prism 20 long on a 10-wide base, 8 high.
+inline core::TriMesh wedge() {
+  core::TriMesh m;
+  m.points = {{0, 0, 0}, {0, 10, 0}, {0, 5, 8}, {20, 0, 0}, {20, 10, 0}, {20, 5, 8}};
+  m.cells = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}};
+  return m;
+}
+
+//! A square pyramid of 6 triangles, 10 wide and 7 high.
+inline core::TriMesh pyramid() {
+  core::TriMesh m;
+  m.points = {{0, 0, 0}, {10, 0, 0}, {10, 10, 0}, {0, 10, 0}, {5, 5, 7}};
+  m.cells = {{0, 2, 1}, {0, 3, 2}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  return m;
+}
+
+//! A regular tetrahedron with edges 10 long, standing on the plane z = 0.
+inline core::TriMesh regular_tetrahedron() {
+  core::TriMesh m;
+  const double h = 10.0 * std::sqrt(3.0) / 2.0;
+  m.points = {{0, 0, 0}, {10, 0, 0}, {5, h, 0}, {5, h / 3.0, 10.0 * std::sqrt(2.0 / 3.0)}};
+  m.cells = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+  return m;
+}
+
 }  // namespace polycube::test
