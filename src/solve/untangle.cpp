@@ -13,6 +13,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/LU>
+#include <Eigen/SVD>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
@@ -20,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 
 namespace polycube::solve {
@@ -251,20 +253,108 @@ Stats evaluate(const TetElements& el, const std::vector<Attraction>& attr, const
   return total;
 }
 
-//! Project a symmetric matrix to positive semi-definite (negative eigenvalues clamped to 0).
-Mat9 project_psd(const Mat9& H) {
-  if (Eigen::LLT<Mat9>(H).info() == Eigen::Success) return H;  // already PD: skip the eigensolver
-  Eigen::SelfAdjointEigenSolver<Mat9> es(H);
-  Vec9 ev = es.eigenvalues();
-  if (ev.minCoeff() >= 0) return H;
-  for (int i = 0; i < 9; ++i) ev[i] = std::max(ev[i], 0.0);
-  return es.eigenvectors() * ev.asDiagonal() * es.eigenvectors().transpose();
+//! The elliptic energy depends on J only through |J|² and det J, so its Hessian in vec(J) is
+//! c0·I + c1·(j kᵀ + k jᵀ) + c2·k kᵀ + c3·∇²det, with j = vec J and k = vec cof J.
+struct EnergyTerms {
+  double value = 0;
+  double c0 = 0, c1 = 0, c2 = 0, c3 = 0;
+};
+
+EnergyTerms energy_terms(const Mat3& J, double D, double eps, double lambda) {
+  const double s = std::sqrt(eps * eps + D * D);
+  const double c = chi(D, eps);
+  const double c1 = c / s;                          // dχ/dD
+  const double c2 = 0.5 * eps * eps / (s * s * s);  // d²χ/dD²
+  // shape term a(J) g(D): a = |J|²/3, g = χ^(-2/3)
+  const double a = J.squaredNorm() / 3.0;
+  const double g = 1.0 / std::cbrt(c * c);
+  const double g1 = -2.0 / 3.0 * g / c * c1;
+  const double g2 = 10.0 / 9.0 * g / (c * c) * c1 * c1 - 2.0 / 3.0 * g / c * c2;
+  // volume term h(D) = (D²+1)/χ
+  const double q = D * D + 1.0;
+  const double h = q / c;
+  const double h1 = 2.0 * D / c - q * c1 / (c * c);
+  const double h2 = 2.0 / c - 4.0 * D * c1 / (c * c) - q * c2 / (c * c) + 2.0 * q * c1 * c1 / (c * c * c);
+  return {a * g + lambda * h, (2.0 / 3.0) * g, (2.0 / 3.0) * g1, a * g2 + lambda * h2, a * g1 + lambda * h1};
+}
+
+ElementEnergy energy_derivatives(const Mat3& J, const EnergyTerms& t) {
+  const Mat3 K = cofactor(J);
+  const Vec9 j = vec(J);
+  const Vec9 k = vec(K);
+  // Hessian of det: blocks (a,b) for (a,b,c) cyclic are levi(r_c), transposes below.
+  Mat9 HD = Mat9::Zero();
+  const Eigen::Vector3d r0 = J.row(0).transpose(), r1 = J.row(1).transpose(), r2 = J.row(2).transpose();
+  HD.block<3, 3>(0, 3) = levi(r2);
+  HD.block<3, 3>(3, 6) = levi(r0);
+  HD.block<3, 3>(6, 0) = levi(r1);
+  HD.block<3, 3>(3, 0) = HD.block<3, 3>(0, 3).transpose();
+  HD.block<3, 3>(6, 3) = HD.block<3, 3>(3, 6).transpose();
+  HD.block<3, 3>(0, 6) = HD.block<3, 3>(6, 0).transpose();
+  ElementEnergy out;
+  out.value = t.value;
+  out.gradient = t.c0 * j + t.c3 * k;
+  out.hessian =
+      t.c0 * Mat9::Identity() + t.c1 * (j * k.transpose() + k * j.transpose()) + t.c2 * (k * k.transpose()) + t.c3 * HD;
+  return out;
+}
+
+//! PSD projection of the Hessian H of the energy at J from its analytic eigensystem (Smith et al.
+//! 2019, "Analytic eigensystems for isotropic distortion energies"), instead of a 9 × 9 numeric
+//! eigensolver: the energy is invariant under rotations on either side, so in J's signed singular
+//! frame J = U diag(s) Vᵀ (U, V rotations, s₂ carrying det's sign) the Hessian splits into one
+//! 3 × 3 block on the scalings u_a v_aᵀ and three 2 × 2 blocks on the pairs u_a v_bᵀ, u_b v_aᵀ,
+//! whose eigenvalues are c0 ∓ c3·s_z (z the third index). H itself when PD or semi-definite.
+Mat9 project_psd(const Mat3& J, const Mat9& H, const EnergyTerms& t) {
+  if (Eigen::LLT<Mat9>(H).info() == Eigen::Success) return H;  // already PD: nothing to project
+  const Eigen::JacobiSVD<Mat3> svd(J, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Mat3 U = svd.matrixU();
+  Mat3 V = svd.matrixV();
+  Eigen::Vector3d s = svd.singularValues();
+  if (U.determinant() < 0) {
+    U.col(2) *= -1.0;
+    s[2] *= -1.0;
+  }
+  if (V.determinant() < 0) {
+    V.col(2) *= -1.0;
+    s[2] *= -1.0;
+  }
+  const Eigen::Vector3d k(s[1] * s[2], s[0] * s[2], s[0] * s[1]);
+  Mat3 A = t.c0 * Mat3::Identity() + t.c1 * (s * k.transpose() + k * s.transpose()) + t.c2 * (k * k.transpose());
+  for (int z = 0; z < 3; ++z) {
+    const int a = (z + 1) % 3, b = (z + 2) % 3;
+    A(a, b) += t.c3 * s[z];
+    A(b, a) += t.c3 * s[z];
+  }
+  Eigen::SelfAdjointEigenSolver<Mat3> scaling;
+  scaling.computeDirect(A);
+  Mat9 P = Mat9::Zero();
+  bool clamped = false;
+  auto add = [&](double eigenvalue, const Mat3& Q) {
+    if (eigenvalue <= 0) {
+      clamped = clamped || eigenvalue < 0;
+      return;
+    }
+    const Vec9 q = vec(Q);
+    P.noalias() += eigenvalue * (q * q.transpose());
+  };
+  for (int i = 0; i < 3; ++i)
+    add(scaling.eigenvalues()[i], U * scaling.eigenvectors().col(i).asDiagonal() * V.transpose());
+  for (int z = 0; z < 3; ++z) {
+    const int a = (z + 1) % 3, b = (z + 2) % 3;
+    const Mat3 ab = U.col(a) * V.col(b).transpose() * (std::numbers::sqrt2 / 2);
+    const Mat3 ba = U.col(b) * V.col(a).transpose() * (std::numbers::sqrt2 / 2);
+    add(t.c0 - t.c3 * s[z], ab + ba);  // flip
+    add(t.c0 + t.c3 * s[z], ab - ba);  // twist
+  }
+  return clamped ? P : H;
 }
 
 //! Local gradient and projected Hessian in the 12 coordinates of one element.
 void element_derivatives(const Grad& G, const Mat3& J, double w, double eps, double lambda, Vec12& g, Mat12& H) {
-  const ElementEnergy e = elliptic_energy(J, eps, lambda);
-  const Mat9 HJ = project_psd(e.hessian);
+  const EnergyTerms terms = energy_terms(J, J.determinant(), eps, lambda);
+  const ElementEnergy e = energy_derivatives(J, terms);
+  const Mat9 HJ = project_psd(J, e.hessian, terms);
   for (int d = 0; d < 3; ++d) {
     const Eigen::Vector4d gd = G * e.gradient.segment<3>(3 * d);
     for (int i = 0; i < 4; ++i) g[3 * i + d] = w * gd[i];
@@ -280,41 +370,12 @@ void element_derivatives(const Grad& G, const Mat3& J, double w, double eps, dou
 }  // namespace
 
 ElementEnergy elliptic_energy(const Eigen::Matrix3d& J, double eps, double lambda) {
-  ElementEnergy out;
-  const double D = J.determinant();
-  const double s = std::sqrt(eps * eps + D * D);
-  const double c = chi(D, eps);
-  const double c1 = c / s;                      // dχ/dD
-  const double c2 = 0.5 * eps * eps / (s * s * s);  // d²χ/dD²
-  const Mat3 K = cofactor(J);
-  const Vec9 j = vec(J);
-  const Vec9 k = vec(K);
-  // Hessian of det: blocks (a,b) for (a,b,c) cyclic are levi(r_c), transposes below.
-  Mat9 HD = Mat9::Zero();
-  const Eigen::Vector3d r0 = J.row(0).transpose(), r1 = J.row(1).transpose(), r2 = J.row(2).transpose();
-  HD.block<3, 3>(0, 3) = levi(r2);
-  HD.block<3, 3>(3, 6) = levi(r0);
-  HD.block<3, 3>(6, 0) = levi(r1);
-  HD.block<3, 3>(3, 0) = HD.block<3, 3>(0, 3).transpose();
-  HD.block<3, 3>(6, 3) = HD.block<3, 3>(3, 6).transpose();
-  HD.block<3, 3>(0, 6) = HD.block<3, 3>(6, 0).transpose();
+  return energy_derivatives(J, energy_terms(J, J.determinant(), eps, lambda));
+}
 
-  // shape term a(J) g(D): a = |J|²/3, g = χ^(-2/3)
-  const double a = J.squaredNorm() / 3.0;
-  const double g = 1.0 / std::cbrt(c * c);
-  const double g1 = -2.0 / 3.0 * g / c * c1;
-  const double g2 = 10.0 / 9.0 * g / (c * c) * c1 * c1 - 2.0 / 3.0 * g / c * c2;
-  // volume term h(D) = (D²+1)/χ
-  const double q = D * D + 1.0;
-  const double h = q / c;
-  const double h1 = 2.0 * D / c - q * c1 / (c * c);
-  const double h2 = 2.0 / c - 4.0 * D * c1 / (c * c) - q * c2 / (c * c) + 2.0 * q * c1 * c1 / (c * c * c);
-
-  out.value = a * g + lambda * h;
-  out.gradient = (2.0 / 3.0) * g * j + (a * g1 + lambda * h1) * k;
-  out.hessian = (2.0 / 3.0) * g * Mat9::Identity() + (2.0 / 3.0) * g1 * (j * k.transpose() + k * j.transpose()) +
-                (a * g2 + lambda * h2) * (k * k.transpose()) + (a * g1 + lambda * h1) * HD;
-  return out;
+Eigen::Matrix<double, 9, 9> projected_elliptic_hessian(const Eigen::Matrix3d& J, double eps, double lambda) {
+  const EnergyTerms terms = energy_terms(J, J.determinant(), eps, lambda);
+  return project_psd(J, energy_derivatives(J, terms).hessian, terms);
 }
 
 TetElements reference_elements(const std::vector<core::Vec3>& points, const std::vector<std::array<int, 4>>& tets,

@@ -181,6 +181,11 @@ struct ElementEnergy {
 };
 ElementEnergy elliptic_energy(const Eigen::Matrix3d& J, double epsilon, double volume_weight);
 
+//! The Hessian the Newton steps use: elliptic_energy's when positive semi-definite, else its
+//! projection onto the PSD cone (negative eigenvalues set to 0), from the energy's analytic
+//! eigensystem in J's singular frame.
+Eigen::Matrix<double, 9, 9> projected_elliptic_hessian(const Eigen::Matrix3d& J, double epsilon, double volume_weight);
+
 //! χ(D, ε) evaluated stably for negative D.
 double chi(double det, double epsilon);
 
