@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 
 #include <algorithm>
@@ -64,6 +65,14 @@ TEST(EllipticEnergy, ProjectedHessianIsTheNumericPsdProjection) {
     if (trial == 1) J = Eigen::Vector3d(1.0, 1.0, -1.0).asDiagonal();  // inverted, repeated values
     if (trial == 2) J = Eigen::Vector3d(2.0, 0.5, 0.0).asDiagonal();   // flat
     if (trial == 3) J = Eigen::Vector3d(0.3, 0.3, 0.3).asDiagonal();   // small, repeated
+    // Rotated: nearly a rotation (singular values 1e-7 apart), nearly flat and inverted, a
+    // needle, and large.
+    const Eigen::Matrix3d R = Eigen::Quaterniond(U(rng), U(rng), U(rng), U(rng)).normalized().toRotationMatrix();
+    if (trial == 4) J = R * Eigen::Vector3d(1.0, 1.0 + 1e-7, 1.0 - 1e-7).asDiagonal();
+    if (trial == 5) J = R * Eigen::Vector3d(1.0, 1e-6, -1e-8).asDiagonal() * R.transpose();
+    if (trial == 6) J = R * Eigen::Vector3d(1.0, 1e-9, 1e-9).asDiagonal();
+    if (trial == 7) J = 1e3 * R;
+    if (trial == 8) J = R * Eigen::Vector3d(0.5, 0.5, -0.5 + 1e-8).asDiagonal();
     const double eps = trial % 3 == 0 ? 1e-3 : (trial % 3 == 1 ? 0.1 : 1.0);
     const double lambda = trial % 2 ? 1.0 : 0.25;
     const Eigen::Matrix<double, 9, 9> H = solve::elliptic_energy(J, eps, lambda).hessian;
