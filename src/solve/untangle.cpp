@@ -262,7 +262,8 @@ struct EnergyTerms {
   double c0 = 0, c1 = 0, c2 = 0, c3 = 0;
 };
 
-EnergyTerms energy_terms(const Mat3& J, double D, double eps, double lambda) {
+EnergyTerms energy_terms(const Mat3& J, double eps, double lambda) {
+  const double D = J.determinant();
   const double s = std::sqrt(eps * eps + D * D);
   const double c = chi(D, eps);
   const double c1 = c / s;                          // dχ/dD
@@ -304,6 +305,12 @@ ElementEnergy energy_derivatives(const Mat3& J, const EnergyTerms& t) {
 //! Signed SVD J = U diag(s) Vᵀ with U and V rotations and s₂ carrying det J's sign. Jacobi's SVD:
 //! eigenvectors of JᵀJ in closed form were tried and lose the projection's accuracy (1e-7 of |H|
 //! instead of 1e-9) on nearly flat inverted elements, the untangler's hard case.
+// GCC 12 at -O3 warns that Eigen's JacobiSVD may read its singular values uninitialized; they are
+// all written by the sweeps before being read (a known false positive inside Eigen).
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 void signed_svd(const Mat3& J, Mat3& U, Eigen::Vector3d& s, Mat3& V) {
   const Eigen::JacobiSVD<Mat3> svd(J, Eigen::ComputeFullU | Eigen::ComputeFullV);
   U = svd.matrixU();
@@ -318,6 +325,9 @@ void signed_svd(const Mat3& J, Mat3& U, Eigen::Vector3d& s, Mat3& V) {
     s[2] *= -1.0;
   }
 }
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
 
 //! PSD projection of the Hessian H of the energy at J from its analytic eigensystem (Smith et al.
 //! 2019, "Analytic eigensystems for isotropic distortion energies"), instead of a 9 × 9 numeric
@@ -361,7 +371,7 @@ Mat9 project_psd(const Mat3& J, const Mat9& H, const EnergyTerms& t) {
 
 //! Local gradient and projected Hessian in the 12 coordinates of one element.
 void element_derivatives(const Grad& G, const Mat3& J, double w, double eps, double lambda, Vec12& g, Mat12& H) {
-  const EnergyTerms terms = energy_terms(J, J.determinant(), eps, lambda);
+  const EnergyTerms terms = energy_terms(J, eps, lambda);
   const ElementEnergy e = energy_derivatives(J, terms);
   const Mat9 HJ = project_psd(J, e.hessian, terms);
   for (int d = 0; d < 3; ++d) {
@@ -379,11 +389,11 @@ void element_derivatives(const Grad& G, const Mat3& J, double w, double eps, dou
 }  // namespace
 
 ElementEnergy elliptic_energy(const Eigen::Matrix3d& J, double eps, double lambda) {
-  return energy_derivatives(J, energy_terms(J, J.determinant(), eps, lambda));
+  return energy_derivatives(J, energy_terms(J, eps, lambda));
 }
 
 Eigen::Matrix<double, 9, 9> projected_elliptic_hessian(const Eigen::Matrix3d& J, double eps, double lambda) {
-  const EnergyTerms terms = energy_terms(J, J.determinant(), eps, lambda);
+  const EnergyTerms terms = energy_terms(J, eps, lambda);
   return project_psd(J, energy_derivatives(J, terms).hessian, terms);
 }
 
@@ -528,6 +538,10 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
   int last_progress = 0;
   double progress_min_det = st.min_det;
 
+  // Element derivatives by blocks, two buffers (see the assembly below).
+  constexpr int kBlock = 1024;
+  std::array<std::vector<Mat12>, 2> Hl{std::vector<Mat12>(kBlock), std::vector<Mat12>(kBlock)};
+  std::array<std::vector<Vec12>, 2> gl{std::vector<Vec12>(kBlock), std::vector<Vec12>(kBlock)};
   core::ProgressTask task("untangle", std::max(1, o.max_iterations));
   for (int outer = 0; outer < o.max_iterations; ++outer) {
     task.set(outer);
@@ -544,9 +558,6 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
       // Elements in blocks: the derivatives of a block in parallel, then added into H and g in
       // element order (the same sums whatever the thread count). The adding is serial, so the
       // next block's derivatives are computed meanwhile, in the other buffer.
-      constexpr int kBlock = 1024;
-      std::array<std::vector<Mat12>, 2> Hl{std::vector<Mat12>(kBlock), std::vector<Mat12>(kBlock)};
-      std::array<std::vector<Vec12>, 2> gl{std::vector<Vec12>(kBlock), std::vector<Vec12>(kBlock)};
       auto derivatives = [&](int b0, int buf) {
         const int b1 = std::min(T, b0 + kBlock);
         tbb::parallel_for(tbb::blocked_range<int>(b0, b1, 64), [&](const tbb::blocked_range<int>& r) {
