@@ -1,6 +1,7 @@
 // The help of every subcommand reads as words: choices by name, defaults and constraints in the
 // description, no CLI11 internals (`{map->1,uniform->0}`, `{false}`) and no build path.
 #include "run_cli.h"
+#include "support/scratch.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -62,7 +63,7 @@ TEST(CliHelp, ChoicesAreReadByNameInAnyCaseAndOthersRefused) {
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.err.find("--sizing: must be one of uniform, map, got 'bogus'"), std::string::npos) << bad.err;
   // A valid choice passes parsing: the missing input then fails as bad input (exit 2), not usage.
-  const std::string out = ::testing::TempDir() + "help_choice_" + std::to_string(getpid());
+  const std::string out = (polycube::test::scratch_dir("help_choice") / "out").string();
   EXPECT_EQ(run_cli("run /nonexistent/in.obj -o " + out + " --sizing MAP --padding Global").exit_code, 2);
 }
 
@@ -70,9 +71,7 @@ TEST(CliHelp, ChoicesAreReadByNameInAnyCaseAndOthersRefused) {
 // with the same options in its report; the command line wins over the file.
 TEST(CliConfig, SavedSettingsRunTheSameCommandAgain) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::path(::testing::TempDir()) / ("pc_config_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = polycube::test::scratch_dir("pc_config");
   const std::string config = (dir / "settings.toml").string(), out = (dir / "out").string();
   auto report_options = [&] {
     std::ifstream in(dir / "out" / "report.json");
@@ -100,9 +99,7 @@ TEST(CliConfig, SavedSettingsRunTheSameCommandAgain) {
 // --log FILE gets every message with its time, the info ones too (stderr shows warnings only).
 TEST(CliLog, TheLogFileHoldsTheInfoMessagesWithTheirTime) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::path(::testing::TempDir()) / ("pc_log_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = polycube::test::scratch_dir("pc_log");
   const auto r = run_cli("--log '" + (dir / "run.log").string() + "' run '" + (dir / "missing.obj").string() + "' -o '" +
                          (dir / "out").string() + "'");
   EXPECT_EQ(r.exit_code, 2);

@@ -7,6 +7,7 @@
 #include "cli/run_cli.h"
 #include "io/mesh_io.h"
 #include "optimize/optimize_fixtures.h"
+#include "support/scratch.h"
 
 #include <filesystem>
 #include <set>
@@ -38,9 +39,7 @@ void expect_summary_shape(const nlohmann::json& sj, int cells, const std::string
 }
 
 TEST(JsonShapes, OptimizeAndQualityReportTheSameScaledJacobianSummary) {
-  const fs::path dir = fs::path(::testing::TempDir()) / "pc_json_shapes";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = polycube::test::scratch_dir("pc_json_shapes");
   core::HexMesh m = test::box_grid(3, 3, 3);
   test::perturb(m, 0.04, 3, [](const core::Vec3&) { return true; });
   io::write_mesh(dir / "hex.mesh", core::to_mesh_data(m));

@@ -1,6 +1,7 @@
 // Progress as a person sees it: on a terminal one bar per stage that only moves forward, with
 // the elapsed time and an estimate; off a terminal no bar drawing in the log.
 #include "run_cli.h"
+#include "support/scratch.h"
 
 #include <gtest/gtest.h>
 
@@ -18,12 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 
 //! A folder of the test's own (ctest runs tests as parallel processes).
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) / (name + "_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path fresh_dir(const std::string& name) { return test::scratch_dir(name); }
 
 std::string read_all(const fs::path& p) {
   std::string s;

@@ -1,6 +1,8 @@
 // The README's quick start is what a newcomer types first: every line of it must run as written
 // and leave the files the README then talks about. The commands are read from README.md itself,
 // so a README edit that breaks them fails here rather than on a user's machine.
+#include "support/scratch.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -89,9 +91,7 @@ TEST(CliReadme, QuickStartRunsAsWritten) {
 
   // A fresh folder, as a user's working directory would be; named by pid so that parallel
   // ctest runs do not share it.
-  const fs::path dir = fs::path(::testing::TempDir()) / ("pc_readme_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = polycube::test::scratch_dir("pc_readme");
 
   const std::string word = "polycube ";
   for (const std::string& command : commands) {

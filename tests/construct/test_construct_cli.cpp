@@ -12,6 +12,7 @@
 #include "cli/run_cli.h"
 #include "cli/surface_file.h"
 #include "support/shapes.h"
+#include "support/scratch.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -33,13 +34,7 @@ namespace fs = std::filesystem;
 
 using test::CliResult;
 
-fs::path temp_dir(const std::string& name) {
-  const fs::path d =
-      fs::temp_directory_path() / ("polycube_construct_cli_test_" + name + "_" + std::to_string(getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path temp_dir(const std::string& name) { return test::scratch_dir("polycube_construct_cli_test_" + name); }
 
 using test::write_surface;
 

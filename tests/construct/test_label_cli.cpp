@@ -6,6 +6,7 @@
 #include "construct/validator.h"
 
 #include "cli/surface_file.h"
+#include "support/scratch.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -27,12 +28,7 @@ struct CliRun {
   std::string err;
 };
 
-fs::path temp_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("polycube_label_test_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path temp_dir(const std::string& name) { return test::scratch_dir("polycube_label_test_" + name); }
 
 CliRun run_label(const fs::path& input, const fs::path& out) {
   const fs::path err = out.parent_path() / (out.filename().string() + ".stderr");

@@ -10,6 +10,7 @@
 #include "io/three_mf.h"
 
 #include "fabricate_fixtures.h"
+#include "support/scratch.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -32,12 +33,7 @@ namespace fs = std::filesystem;
 
 //! A fresh folder of this test process: ctest runs the tests of this file as parallel
 //! processes, so a fixed name would let one process delete another's outputs.
-fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::path(::testing::TempDir()) / (name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path fresh_dir(const std::string& name) { return test::scratch_dir(name); }
 
 double enclosed_volume(const core::TriMesh& m) {
   double v = 0;

@@ -8,6 +8,7 @@
 #include "io/mesh_io.h"
 
 #include "../support/fixtures.h"
+#include "support/scratch.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -113,9 +114,7 @@ TEST(SlicerSupport, TheKnownRanksHandleTies) {
 
 TEST(SlicerSupport, PrusaSlicerSupportsThePartsWeSayNeedItAndRanksThemAsWeDo) {
   if (!have_prusa_slicer()) GTEST_SKIP() << "prusa-slicer not installed";
-  const fs::path dir =
-      fs::path(::testing::TempDir()) / ("slicer_support_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const fs::path dir = test::scratch_dir("slicer_support");
   fs::create_directories(dir / "config");
   std::vector<double> ours, slicer;
   for (const char* sample : {"flange", "l-bracket", "ring"}) {
@@ -148,9 +147,7 @@ TEST(SlicerSupport, PrusaSlicerSupportsThePartsWeSayNeedItAndRanksThemAsWeDo) {
 
 TEST(SlicerSupport, PrusaSlicerSupportsAKeelThoughNoFaceOfItOverhangs) {
   if (!have_prusa_slicer()) GTEST_SKIP() << "prusa-slicer not installed";
-  const fs::path dir =
-      fs::path(::testing::TempDir()) / ("slicer_keel_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const fs::path dir = test::scratch_dir("slicer_keel");
   fs::create_directories(dir / "config");
   // 40 mm long, rising at 30 degrees from its end on the bed; its faces 60 degrees or more from
   // straight down.

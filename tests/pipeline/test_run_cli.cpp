@@ -14,6 +14,7 @@
 #include "cli/run_cli.h"
 #include "cli/surface_file.h"
 #include "support/shapes.h"
+#include "support/scratch.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -45,13 +46,7 @@ std::string slurp(const fs::path& p) {
   return ss.str();
 }
 
-fs::path temp_dir(const std::string& name) {
-  // One folder per process: ctest runs each test case as its own process, possibly in parallel.
-  const fs::path d = fs::temp_directory_path() / ("polycube_run_test_" + name + "_" + std::to_string(getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path temp_dir(const std::string& name) { return test::scratch_dir("polycube_run_test_" + name); }
 
 CliResult run(const std::string& args) { return test::run_cli("run " + args); }
 

@@ -9,6 +9,7 @@
 #include "quality/scaled_jacobian.h"
 
 #include "cli/run_cli.h"
+#include "support/scratch.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -26,8 +27,7 @@ namespace fs = std::filesystem;
 void run_chain(const std::string& model) {
   const fs::path input = fs::path(POLYCUBE_DATA_DIR) / "surface" / (model + ".obj");
   if (!fs::exists(input)) GTEST_SKIP() << input << " not found";
-  const fs::path out = fs::temp_directory_path() / ("polycube_run_heavy_" + model + "_" + std::to_string(getpid()));
-  fs::remove_all(out);
+  const fs::path out = test::scratch_dir("polycube_run_heavy_" + model) / "out";
   const test::CliResult r =
       test::run_cli("run \"" + input.string() + "\" -o \"" + out.string() + "\" --hexes 10000");
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -14,6 +14,7 @@
 
 #include "cli/run_cli.h"
 #include "construct/certifier.h"
+#include "support/scratch.h"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -68,8 +69,7 @@ void expect_certified_map(const fs::path& dir, std::vector<core::Tet>* tets) {
 TEST(RunOrganic, MoaiCompletesWithinTheBoundAtFiveThousandHexes) {
   const fs::path input = fs::path(POLYCUBE_DATA_DIR) / "surface" / "moai.obj";
   if (!fs::exists(input)) GTEST_SKIP() << input << " not found";
-  const fs::path out = fs::temp_directory_path() / ("polycube_run_organic_" + std::to_string(getpid()));
-  fs::remove_all(out);
+  const fs::path out = test::scratch_dir("polycube_run_organic") / "out";
   const test::CliResult r =
       test::run_cli("run \"" + input.string() + "\" -o \"" + out.string() + "\" --hexes 5000");
   ASSERT_EQ(r.exit_code, 0) << r.err;

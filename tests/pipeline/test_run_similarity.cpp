@@ -9,6 +9,7 @@
 #include "cli/surface_file.h"
 #include "core/types.h"
 #include "io/mesh_io.h"
+#include "support/scratch.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -25,12 +26,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path temp_dir(const std::string& name) {
-  const fs::path d = fs::path(::testing::TempDir()) / (name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path temp_dir(const std::string& name) { return test::scratch_dir(name); }
 
 nlohmann::json run_and_report(const fs::path& in, const fs::path& out) {
   const auto r = test::run_cli(

@@ -9,6 +9,7 @@
 #include "io/mesh_io.h"
 #include "repair/repair.h"
 #include "support/shapes.h"
+#include "support/scratch.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -137,12 +138,7 @@ TEST(GeometryRepair, TheWrapMakesOverlappingBoxesOneClosedSolid) {
   EXPECT_NEAR(core::signed_volume(m), 1875.0, 1875.0 * 0.05);
 }
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::path(::testing::TempDir()) / (name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path fresh_dir(const std::string& name) { return test::scratch_dir(name); }
 
 TEST(GeometryRepairCli, EachDefectIsRefusedWithItsRemedyAndGoesThroughWithIt) {
   const fs::path dir = fresh_dir("repair_remedies");

@@ -7,6 +7,7 @@
 #include "io/mesh_io.h"
 #include "repair/repair.h"
 #include "support/shapes.h"
+#include "support/scratch.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -122,10 +123,7 @@ TEST(Repair, EverySharedSurfaceNeedsNothing) {
 }
 
 TEST(RepairCli, InfoReportsTheRepairsAndConstructMapsASoup) {
-  const fs::path dir =
-      fs::path(::testing::TempDir()) / ("repair_cli_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = test::scratch_dir("repair_cli");
   const core::TriMesh box = test::make_box(1, 2, 1.5, 3);
   io::write_mesh(dir / "soup.obj", core::to_mesh_data(test::soup_of(box)));
   const auto info = test::run_cli("--json info " + (dir / "soup.obj").string());

@@ -6,6 +6,7 @@
 #include "core/topology.h"
 #include "io/mesh_io.h"
 #include "support/shapes.h"
+#include "support/scratch.h"
 
 #include <gtest/gtest.h>
 
@@ -144,9 +145,7 @@ std::vector<Case> corpus() {
 }
 
 TEST(RepairCorpus, EveryMeshGoesThroughOrIsRefusedWithTheRemedyThatWorks) {
-  const fs::path dir = fs::path(::testing::TempDir()) / ("repair_corpus_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = test::scratch_dir("repair_corpus");
   const std::vector<Case> cases = corpus();
   ASSERT_GE(cases.size(), 20u);
   for (const Case& c : cases) {

@@ -3,6 +3,7 @@
 #include "core/topology.h"
 #include "io/mesh_io.h"
 #include "samples/samples.h"
+#include "support/scratch.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -17,8 +18,7 @@ namespace fs = std::filesystem;
 using polycube::test::run_cli;
 
 fs::path temp_dir() {
-  const fs::path d = fs::path(::testing::TempDir()) / "polycube_sample_cli";
-  fs::create_directories(d);
+  static const fs::path d = polycube::test::scratch_dir("polycube_sample_cli");
   return d;
 }
 

@@ -2,6 +2,8 @@
 // Run the built `polycube` binary and capture its exit code, stdout and stderr (temporary files
 // named by process id, so parallel test processes do not collide).
 
+#include "support/scratch.h"
+
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -28,14 +30,8 @@ inline std::string read_file(const std::filesystem::path& p) {
   return os.str();
 }
 
-//! A fresh temporary folder for one test (removed by the caller or left in TempDir).
-inline std::filesystem::path temp_folder(const std::string& name) {
-  const auto dir = std::filesystem::path(::testing::TempDir()) /
-                   ("pc_" + name + "_" + std::to_string(static_cast<long>(getpid())));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+//! A fresh temporary folder for one test, removed when the test program ends (scratch.h).
+inline std::filesystem::path temp_folder(const std::string& name) { return scratch_dir("pc_" + name); }
 
 //! A path in single quotes for the shell (built by appending: GCC 12 warns falsely on "'" + s).
 inline std::string quoted(const std::filesystem::path& p) {

@@ -3,6 +3,7 @@
 #include "io/polycube_map_io.h"
 #include "structure/analytic_maps.h"
 #include "structure/validate.h"
+#include "support/scratch.h"
 
 #include <gtest/gtest.h>
 
@@ -131,8 +132,7 @@ TEST(Validate, BadIndicesAreInputErrors) {
 TEST(PolycubeMapIo, RoundTripAndConnectivityCheck) {
   const auto m =
       test::l_shape(2, [](const Vec3& p) { return Vec3(p.x() + 0.3 * p.z(), p.y(), p.z()); }).map;
-  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "pc_map_io";
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path dir = test::scratch_dir("pc_map_io");
   io::write_polycube_map(dir / "model.mesh", dir / "polycube.mesh", m);
   const core::PolycubeMap r = io::read_polycube_map(dir / "model.mesh", dir / "polycube.mesh");
   EXPECT_EQ(r.tets, m.tets);
