@@ -1,6 +1,7 @@
 #include "padding/selection.h"
 
 #include "core/errors.h"
+#include "core/log.h"
 #include "core/stopwatch.h"
 #include "padding/padding_topology.h"
 #include "solve/milp.h"
@@ -8,6 +9,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace polycube::padding {
@@ -200,16 +202,26 @@ void turns_of(const Model& m, const std::vector<double>& x_of_facet, std::vector
     for (const auto& [a, b] : m.edge_pairs[w]) tv[w] = std::max(tv[w], std::abs(te[a] - te[b]));
 }
 
-//! The cut that pads every surface facet: every hex inside, every ghost outside.
-std::vector<double> surface_start(const Model& m, const Topology& tp) {
+//! The program's point of a cut: y of every hex and ghost given (`inside`, by variable), x, z
+//! and the turn indicators as the rows define them.
+std::vector<double> cut_solution(const Model& m, const Topology& tp, const std::vector<double>& inside) {
   const Variables& v = m.v;
   std::vector<double> s(static_cast<std::size_t>(m.program.num_variables()), 0.0);
-  for (int y : v.hex) s[y] = 1.0;
+  for (int y : v.hex) s[y] = inside[y];
+  for (int y : v.ghost)
+    if (y >= 0) s[y] = inside[y];
+  const auto y = [&](int var) { return var >= 0 ? s[var] : 0.0; };
   std::vector<double> x(v.x.size(), 0.0);
-  for (int f = 0; f < tp.t.num_faces(); ++f) x[f] = tp.t.faces.is_boundary(f) ? 1.0 : 0.0;
-  for (std::size_t f = 0; f < x.size(); ++f) s[v.x[f]] = x[f];
-  for (std::size_t e = 0; e < v.z.size(); ++e)
-    if (v.z[e] >= 0) s[v.z[e]] = 0.0;
+  for (int f = 0; f < tp.t.num_faces(); ++f) {
+    const auto [a, b] = facet_cells(tp, v, f);
+    x[f] = y(a) != y(b) ? 1.0 : 0.0;
+    s[v.x[f]] = x[f];
+  }
+  for (int e = 0; e < tp.t.num_edges(); ++e)
+    if (v.z[e] >= 0) {
+      const auto [b1, b2] = tp.edge_boundary[e];
+      s[v.z[e]] = y(b1 >= 0 ? v.ghost[b1] : -1) != y(b2 >= 0 ? v.ghost[b2] : -1) ? 1.0 : 0.0;
+    }
   std::vector<double> te, tv;
   turns_of(m, x, te, tv);
   for (std::size_t e = 0; e < te.size(); ++e)
@@ -217,6 +229,137 @@ std::vector<double> surface_start(const Model& m, const Topology& tp) {
   for (std::size_t w = 0; w < tv.size(); ++w)
     if (v.tv[w] >= 0) s[v.tv[w]] = tv[w];
   return s;
+}
+
+//! The cut that pads every surface facet: every hex inside, every ghost outside.
+std::vector<double> surface_start(const Model& m, const Topology& tp) {
+  std::vector<double> inside(static_cast<std::size_t>(m.program.num_variables()), 0.0);
+  for (int y : m.v.hex) inside[y] = 1.0;
+  return cut_solution(m, tp, inside);
+}
+
+//! Cells (hex and ghost variables) next to each other: across a facet, or two ghosts at a
+//! boundary edge.
+std::vector<std::vector<int>> cell_neighbours(const Model& m, const Topology& tp) {
+  std::vector<std::vector<int>> out(static_cast<std::size_t>(m.program.num_variables()));
+  const auto link = [&](int a, int b) {
+    if (a < 0 || b < 0) return;
+    out[a].push_back(b);
+    out[b].push_back(a);
+  };
+  for (int f = 0; f < tp.t.num_faces(); ++f) {
+    const auto [a, b] = facet_cells(tp, m.v, f);
+    link(a, b);
+  }
+  for (int e = 0; e < tp.t.num_edges(); ++e)
+    if (tp.t.edge_on_boundary[e]) {
+      const auto [b1, b2] = tp.edge_boundary[e];
+      if (b1 >= 0 && b2 >= 0) link(m.v.ghost[b1], m.v.ghost[b2]);
+    }
+  return out;
+}
+
+//! Which variables stay fixed when only the cells within `rings` steps of `seeds` are free: a
+//! cell outside, and every x, z and turn indicator whose rows read fixed cells only (their values
+//! follow from the cut, cut_solution()).
+std::vector<char> fixed_outside(const Model& m, const Topology& tp, const std::vector<std::vector<int>>& neighbours,
+                                std::vector<int> seeds, int rings) {
+  const Variables& v = m.v;
+  std::vector<char> fixed(static_cast<std::size_t>(m.program.num_variables()), 1);
+  std::vector<int> front = std::move(seeds);
+  for (int y : front) fixed[y] = 0;
+  for (int ring = 0; ring < rings; ++ring) {
+    std::vector<int> next;
+    for (int c : front)
+      for (int d : neighbours[c])
+        if (fixed[d]) {
+          fixed[d] = 0;
+          next.push_back(d);
+        }
+    front = std::move(next);
+  }
+  const auto is_fixed = [&](int var) { return var < 0 || fixed[var] != 0; };
+  for (int f = 0; f < tp.t.num_faces(); ++f) {
+    const auto [a, b] = facet_cells(tp, v, f);
+    fixed[v.x[f]] = is_fixed(a) && is_fixed(b) ? 1 : 0;
+  }
+  for (int e = 0; e < tp.t.num_edges(); ++e) {
+    if (v.z[e] >= 0) {
+      const auto [b1, b2] = tp.edge_boundary[e];
+      fixed[v.z[e]] = is_fixed(b1 >= 0 ? v.ghost[b1] : -1) && is_fixed(b2 >= 0 ? v.ghost[b2] : -1) ? 1 : 0;
+    }
+    if (v.te[e] < 0) continue;
+    bool all = true;
+    for (const auto& [a, b] : m.pairs[e]) all = all && is_fixed(v.x[a]) && is_fixed(v.x[b]);
+    fixed[v.te[e]] = all ? 1 : 0;
+  }
+  for (std::size_t w = 0; w < v.tv.size(); ++w) {
+    if (v.tv[w] < 0) continue;
+    bool all = true;
+    for (const auto& [a, b] : m.edge_pairs[w]) all = all && is_fixed(v.te[a]) && is_fixed(v.te[b]);
+    fixed[v.tv[w]] = all ? 1 : 0;
+  }
+  return fixed;
+}
+
+//! Rings of cells around the broken rows that repair_rounding() frees in turn.
+constexpr std::array<int, 3> kRepairRings{2, 4, 8};
+//! Share of the time limit the repair may take; branch and cut gets the rest.
+constexpr double kRepairShare = 0.25;
+//! Largest neighbourhood worth a program of its own, as a share of the whole program's
+//! variables: CBC finds no point in time in a neighbourhood of a tenth of the whole either.
+constexpr double kRepairLargest = 0.05;
+//! A relaxation's value this far from 0 and 1 is fractional.
+constexpr double kFractional = 1e-6;
+
+bool fractional(double y) { return y > kFractional && y < 1 - kFractional; }
+
+//! The relaxation made integral: its cut rounded at 1/2, which keeps HF and the concave edges
+//! but may break E2H and no-crossing rows where the relaxation was fractional. The cells within
+//! a few rings of the fractional ones are then set anew by solving the program over them alone,
+//! the rest fixed to the rounding: 2, 4 and 8 rings, while the point found does not yet cost
+//! what the relaxation does, the neighbourhood stays small (kRepairLargest) and the repair's
+//! share of `seconds` is left. The padding problem's relaxation is often integral but at a few
+//! ghosts, whose facets it pads by half; then the neighbourhood is a few hundred cells. Empty
+//! when no neighbourhood gives a feasible point.
+std::vector<double> repair_rounding(const Model& m, const Topology& tp, const std::vector<double>& relaxation,
+                                    double seconds) {
+  const core::Stopwatch clock;
+  std::vector<double> inside(relaxation.size(), 0.0);
+  for (int y : m.v.hex) inside[y] = relaxation[y] >= 0.5 ? 1.0 : 0.0;
+  for (int y : m.v.ghost)
+    if (y >= 0) inside[y] = relaxation[y] >= 0.5 ? 1.0 : 0.0;
+  const std::vector<double> rounded = cut_solution(m, tp, inside);
+  if (m.program.satisfied_by(rounded)) return rounded;
+  std::vector<int> seeds;
+  for (int y : m.v.hex)
+    if (fractional(relaxation[y])) seeds.push_back(y);
+  for (int y : m.v.ghost)
+    if (y >= 0 && fractional(relaxation[y])) seeds.push_back(y);
+  const double bound = m.program.objective(relaxation);
+  const double budget = seconds > 0 ? kRepairShare * seconds : 0.0;
+  const std::vector<std::vector<int>> neighbours = cell_neighbours(m, tp);
+  std::vector<double> best;
+  for (int rings : kRepairRings) {
+    const double left = budget - clock.seconds();
+    if (seconds > 0 && left <= 0) break;
+    const solve::RestrictedProgram sub =
+        solve::restrict_program(m.program, fixed_outside(m, tp, neighbours, seeds, rings), rounded);
+    if (sub.program.num_variables() > kRepairLargest * m.program.num_variables()) break;
+    if (!sub.consistent) continue;
+    solve::MilpOptions o;
+    o.time_limit = seconds > 0 ? left : 0.0;
+    const solve::MilpResult r = solve::solve_program(sub.program, o);
+    core::logger().debug("selection: {} fractional cells, {} rings: {} variables, {} rows, {} ({:.6f} against {:.6f})",
+                         seeds.size(), rings, sub.program.num_variables(), sub.program.num_rows(),
+                         solve::status_name(r.status), r.x.empty() ? 0.0 : r.objective + sub.constant, bound);
+    if (r.x.empty()) continue;
+    std::vector<double> full = sub.expand(rounded, r.x);
+    if (!m.program.satisfied_by(full)) continue;
+    if (best.empty() || m.program.objective(full) < m.program.objective(best)) best = std::move(full);
+    if (m.program.objective(best) - bound <= 1e-7 * std::max(1.0, std::abs(bound))) break;
+  }
+  return best;
 }
 
 }  // namespace
@@ -246,6 +389,11 @@ Selection select_facets_to_pad(const core::HexMesh& mesh, const std::vector<std:
   solve::MilpOptions mo;
   mo.time_limit = options.time_limit;
   mo.start = surface_start(m, tp);
+  const core::Stopwatch solve_clock;
+  mo.round = [&](const std::vector<double>& relaxation) {
+    const double left = options.time_limit > 0 ? std::max(options.time_limit - solve_clock.seconds(), 1e-3) : 0.0;
+    return repair_rounding(m, tp, relaxation, left);
+  };
   const solve::MilpResult r = solve::solve_program(m.program, mo);
   if (r.x.empty())
     throw core::SolverError(fmt::format("selective padding: CBC found no solution ({})", solve::status_name(r.status)));

@@ -1,6 +1,7 @@
 #include "solve/milp.h"
 
 #include "core/errors.h"
+#include "core/log.h"
 #include "core/stopwatch.h"
 
 #include <CbcModel.hpp>
@@ -53,6 +54,9 @@ MilpStatus infeasible_or_unbounded(const OsiClpSolverInterface& original, const 
 constexpr double kIntegerTolerance = 1e-6;
 //! Feasibility tolerance of a given start (rows and bounds), as CLP's primal tolerance.
 constexpr double kFeasibilityTolerance = 1e-7;
+//! An integer point within this relative distance of the relaxation's optimum is optimal (CLP's
+//! optimum is itself only this exact).
+constexpr double kBoundTolerance = 1e-7;
 
 //! The LP relaxation's solution with its integer variables rounded, when every one of them is
 //! within kIntegerTolerance of an integer; empty otherwise.
@@ -67,25 +71,19 @@ std::vector<double> integral_solution(const LinearProgram& p, const double* x) {
   return out;
 }
 
-//! Whether x keeps every bound and row of p (within kFeasibilityTolerance) and its integer
-//! variables are integers: a start CBC can take without re-solving to check it.
-bool satisfies(const LinearProgram& p, const std::vector<double>& x) {
-  for (int j = 0; j < p.num_variables(); ++j) {
-    if (!(x[j] >= p.lower[j] - kFeasibilityTolerance && x[j] <= p.upper[j] + kFeasibilityTolerance)) return false;
-    if (!p.integer.empty() && p.integer[j] && std::abs(x[j] - std::round(x[j])) > kIntegerTolerance) return false;
+//! The cheaper of the start and the caller's rounding of the relaxation (when each is feasible),
+//! for branch and cut to start from; empty when neither is.
+std::vector<double> best_start(const LinearProgram& p, const MilpOptions& options, const OsiClpSolverInterface& si) {
+  std::vector<double> best;
+  if (!options.start.empty() && p.satisfied_by(options.start)) best = options.start;
+  if (options.round && si.isProvenOptimal()) {
+    const double* x = si.getColSolution();
+    std::vector<double> rounded = options.round(std::vector<double>(x, x + p.num_variables()));
+    if (static_cast<int>(rounded.size()) == p.num_variables() && p.satisfied_by(rounded) &&
+        (best.empty() || p.objective(rounded) < p.objective(best)))
+      best = std::move(rounded);
   }
-  for (const auto& r : p.rows) {
-    double a = 0.0;
-    for (std::size_t k = 0; k < r.columns.size(); ++k) a += r.coefficients[k] * x[r.columns[k]];
-    if (!(a >= r.lower - kFeasibilityTolerance && a <= r.upper + kFeasibilityTolerance)) return false;
-  }
-  return true;
-}
-
-double objective_of(const LinearProgram& p, const std::vector<double>& x) {
-  double c = 0.0;
-  for (int j = 0; j < p.num_variables(); ++j) c += p.cost[j] * x[j];
-  return c;
+  return best;
 }
 
 //! ClpModel::status() of a solve stopped on its iteration or time limit.
@@ -113,10 +111,10 @@ MilpResult stopped_at_the_limit(const LinearProgram& p, const MilpOptions& optio
   res.status = MilpStatus::Stopped;
   if (best != nullptr) {
     res.x.assign(best, best + p.num_variables());
-  } else if (!options.start.empty() && satisfies(p, options.start)) {
+  } else if (!options.start.empty() && p.satisfied_by(options.start)) {
     res.x = options.start;
   }
-  if (!res.x.empty()) res.objective = objective_of(p, res.x);
+  if (!res.x.empty()) res.objective = p.objective(res.x);
   res.bound = bound;
   return res;
 }
@@ -143,6 +141,68 @@ int LinearProgram::add_row(std::vector<int> columns, std::vector<double> coeffic
   r.upper = upper_bound;
   rows.push_back(std::move(r));
   return static_cast<int>(rows.size()) - 1;
+}
+
+bool LinearProgram::satisfied_by(const std::vector<double>& x) const {
+  if (static_cast<int>(x.size()) != num_variables()) return false;
+  for (int j = 0; j < num_variables(); ++j) {
+    if (!(x[j] >= lower[j] - kFeasibilityTolerance && x[j] <= upper[j] + kFeasibilityTolerance)) return false;
+    if (!integer.empty() && integer[j] && std::abs(x[j] - std::round(x[j])) > kIntegerTolerance) return false;
+  }
+  for (const auto& r : rows) {
+    double a = 0.0;
+    for (std::size_t k = 0; k < r.columns.size(); ++k) a += r.coefficients[k] * x[r.columns[k]];
+    if (!(a >= r.lower - kFeasibilityTolerance && a <= r.upper + kFeasibilityTolerance)) return false;
+  }
+  return true;
+}
+
+double LinearProgram::objective(const std::vector<double>& x) const {
+  double c = 0.0;
+  for (int j = 0; j < num_variables(); ++j) c += cost[j] * x[j];
+  return c;
+}
+
+std::vector<double> RestrictedProgram::expand(const std::vector<double>& values, const std::vector<double>& x) const {
+  std::vector<double> out = values;
+  for (std::size_t j = 0; j < column.size(); ++j) out[column[j]] = x[j];
+  return out;
+}
+
+RestrictedProgram restrict_program(const LinearProgram& p, const std::vector<char>& fixed,
+                                   const std::vector<double>& values) {
+  PC_REQUIRE(static_cast<int>(fixed.size()) == p.num_variables() && values.size() == fixed.size(),
+             "fixed flags or values differ in size from the program");
+  RestrictedProgram r;
+  std::vector<int> index(fixed.size(), -1);
+  for (int j = 0; j < p.num_variables(); ++j) {
+    if (fixed[j]) {
+      r.constant += p.cost[j] * values[j];
+      continue;
+    }
+    index[j] = r.program.add_variable(p.cost[j], p.lower[j], p.upper[j], !p.integer.empty() && p.integer[j] != 0);
+    r.column.push_back(j);
+  }
+  for (const auto& row : p.rows) {
+    std::vector<int> cols;
+    std::vector<double> coefs;
+    double moved = 0.0;
+    for (std::size_t k = 0; k < row.columns.size(); ++k) {
+      const int j = row.columns[k];
+      if (fixed[j]) {
+        moved += row.coefficients[k] * values[j];
+      } else {
+        cols.push_back(index[j]);
+        coefs.push_back(row.coefficients[k]);
+      }
+    }
+    if (cols.empty()) {
+      r.consistent = r.consistent && moved >= row.lower - kFeasibilityTolerance && moved <= row.upper + kFeasibilityTolerance;
+      continue;
+    }
+    r.program.add_row(std::move(cols), std::move(coefs), row.lower - moved, row.upper - moved);
+  }
+  return r;
 }
 
 const char* status_name(MilpStatus status) {
@@ -228,6 +288,7 @@ MilpResult solve_program(const LinearProgram& p, const MilpOptions& options) {
   // problem ran in the primal simplex for over 10 minutes under a 60 s limit.
   if (options.time_limit > 0) si.getModelPtr()->setMaximumWallSeconds(options.time_limit);
   si.initialSolve();
+  core::logger().debug("milp: relaxation {:.6f}, {:.1f} s", si.getObjValue(), clock.seconds());
   PC_REQUIRE(options.start.empty() || static_cast<int>(options.start.size()) == n, "start solution has the wrong size");
   if (si.getModelPtr()->status() == kStoppedOnLimit)
     return stopped_at_the_limit(p, options, nullptr, bound_over_the_box(p),
@@ -237,7 +298,7 @@ MilpResult solve_program(const LinearProgram& p, const MilpOptions& options) {
     if (!x.empty()) {
       res.solver = "CLP dual simplex (integral LP relaxation)";
       res.status = MilpStatus::Optimal;
-      res.objective = objective_of(p, x);
+      res.objective = p.objective(x);
       res.bound = res.objective;
       res.x = std::move(x);
       return res;
@@ -245,6 +306,18 @@ MilpResult solve_program(const LinearProgram& p, const MilpOptions& options) {
   } else if (si.isProvenPrimalInfeasible()) {
     res.solver = "CLP dual simplex (LP relaxation)";
     res.status = MilpStatus::Infeasible;  // no real point, so no integer one
+    return res;
+  }
+  // The start, or the caller's rounding of the relaxation: when it costs what the relaxation
+  // does, no integer point costs less, and branch and cut has nothing left to prove.
+  const std::vector<double> first = best_start(p, options, si);
+  if (!first.empty() && si.isProvenOptimal() &&
+      p.objective(first) - si.getObjValue() <= kBoundTolerance * std::max(1.0, std::abs(si.getObjValue()))) {
+    res.solver = "CLP dual simplex (LP relaxation, its bound met by a rounded point)";
+    res.status = MilpStatus::Optimal;
+    res.objective = p.objective(first);
+    res.bound = si.getObjValue();
+    res.x = first;
     return res;
   }
   res.solver = "CBC branch and cut";
@@ -256,12 +329,9 @@ MilpResult solve_program(const LinearProgram& p, const MilpOptions& options) {
   // The time limit covers the relaxation too; CBC still gets a moment to return the start.
   if (options.time_limit > 0) model.setMaximumSeconds(std::max(options.time_limit - clock.seconds(), 1e-3));
   if (options.relative_gap > 0) model.setAllowableFractionGap(options.relative_gap);
-  if (!options.start.empty()) {
-    // Checked here in one pass over the rows; CBC's own check re-solves the LP with the
-    // integers fixed (seconds on the padding problem).
-    if (satisfies(p, options.start))
-      model.setBestSolution(options.start.data(), n, objective_of(p, options.start), false);
-  }
+  // Checked in one pass over the rows (best_start); CBC's own check re-solves the LP with the
+  // integers fixed (seconds on the padding problem).
+  if (!first.empty()) model.setBestSolution(first.data(), n, p.objective(first), false);
   const double relaxation_bound = si.isProvenOptimal() ? si.getObjValue() : bound_over_the_box(p);
   model.branchAndBound();
   // Past the deadline the LPs inside branch and cut were cut short, and CBC then takes a stopped

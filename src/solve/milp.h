@@ -9,6 +9,7 @@
 //! variables its LP relaxation is solved first (an integral optimum of the relaxation is the
 //! program's optimum), then, when that is fractional, by branch and cut with CBC.
 
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -40,6 +41,11 @@ struct LinearProgram {
   //! Add a row; returns its index.
   int add_row(std::vector<int> columns, std::vector<double> coefficients, double lower_bound,
               double upper_bound = kInfinity);
+  //! Whether x keeps every bound and row (within CLP's primal tolerance, 1e-7) and its integer
+  //! variables are integers (within CBC's, 1e-6).
+  [[nodiscard]] bool satisfied_by(const std::vector<double>& x) const;
+  //! c·x.
+  [[nodiscard]] double objective(const std::vector<double>& x) const;
   [[nodiscard]] int num_variables() const { return static_cast<int>(cost.size()); }
   [[nodiscard]] int num_rows() const { return static_cast<int>(rows.size()); }
 };
@@ -51,6 +57,11 @@ struct MilpOptions {
   //! A feasible solution to start branch and cut from (#x values; empty: none). Checked: an
   //! infeasible start is ignored. With a time limit, the result is never worse than the start.
   std::vector<double> start;
+  //! A heuristic that turns the LP relaxation's fractional solution (#x values) into an integer
+  //! point (#x values; empty: none found), run once when the relaxation is not integral. Its
+  //! point is checked like the start; the cheaper of the two starts branch and cut. Problem
+  //! knowledge (which rounding keeps the rows) lives with the caller, not here.
+  std::function<std::vector<double>(const std::vector<double>& relaxation)> round;
 };
 
 //! Status of a solve.
@@ -68,6 +79,24 @@ struct MilpResult {
   //! time limit)" (Stopped, with the start as x when it is feasible) or "CBC branch and cut"
   std::string solver;
 };
+
+//! A program with some variables fixed, over the others (restrict_program()).
+struct RestrictedProgram {
+  LinearProgram program;    //!< over the free variables only
+  std::vector<int> column;  //!< the original's index of each of program's variables
+  double constant = 0.0;    //!< cost of the fixed variables
+  bool consistent = true;   //!< false when a row of fixed variables only does not hold
+  //! The original program's point: `values` with program's solution x written over the free
+  //! variables.
+  [[nodiscard]] std::vector<double> expand(const std::vector<double>& values, const std::vector<double>& x) const;
+};
+
+//! The program over the variables not `fixed`: each fixed variable's value (`values`) moves into
+//! the bounds of its rows, and rows left without a variable are dropped (checked: `consistent`).
+//! A neighbourhood of a few thousand variables of a 10^5-variable program solves in
+//! milliseconds where the whole one takes minutes.
+RestrictedProgram restrict_program(const LinearProgram& p, const std::vector<char>& fixed,
+                                   const std::vector<double>& values);
 
 //! Solve the program. Never throws for infeasible or unbounded programs (see status).
 //! \throw core::InternalError on inconsistent sizes or out-of-range columns

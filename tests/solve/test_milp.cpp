@@ -340,6 +340,81 @@ TEST(Milp, TheTimeLimitHoldsInsideTheRelaxationAndTheStartIsReturned) {
   EXPECT_LT(optimum.objective, r.objective);
 }
 
+// --- neighbourhoods and rounding ------------------------------------------------------------------
+
+TEST(Milp, ARestrictedProgramMovesTheFixedVariablesIntoItsRows) {
+  // The knapsack with item 0 fixed out: items 1 and 2 (weights 20 and 30) fit together, 220.
+  // With item 2 fixed in, 20 of the capacity is left: items 0 and 1 cannot both go, 120 + 100.
+  const LinearProgram p = knapsack(true);
+  const RestrictedProgram without0 = restrict_program(p, {1, 0, 0}, {0.0, 0.0, 0.0});
+  ASSERT_TRUE(without0.consistent);
+  EXPECT_EQ(without0.column, (std::vector<int>{1, 2}));
+  EXPECT_EQ(without0.constant, 0.0);
+  ASSERT_EQ(without0.program.num_rows(), 1);
+  EXPECT_EQ(without0.program.rows[0].upper, 50.0);
+  const MilpResult r0 = solve_program(without0.program);
+  ASSERT_EQ(r0.status, MilpStatus::Optimal);
+  EXPECT_EQ(without0.expand({0.0, 0.0, 0.0}, r0.x), (std::vector<double>{0.0, 1.0, 1.0}));
+
+  const RestrictedProgram with2 = restrict_program(p, {0, 0, 1}, {0.0, 0.0, 1.0});
+  ASSERT_TRUE(with2.consistent);
+  EXPECT_EQ(with2.constant, -120.0);
+  EXPECT_EQ(with2.program.rows[0].upper, 20.0);
+  const MilpResult r2 = solve_program(with2.program);
+  ASSERT_EQ(r2.status, MilpStatus::Optimal);
+  EXPECT_NEAR(r2.objective + with2.constant, -220.0, kTol);
+  EXPECT_EQ(with2.expand({0.0, 0.0, 1.0}, r2.x), (std::vector<double>{0.0, 1.0, 1.0}));
+
+  // Every item fixed in: no variable left, and the row they break is reported.
+  const RestrictedProgram all = restrict_program(p, {1, 1, 1}, {1.0, 1.0, 1.0});
+  EXPECT_EQ(all.program.num_variables(), 0);
+  EXPECT_EQ(all.program.num_rows(), 0);
+  EXPECT_FALSE(all.consistent);
+  EXPECT_THROW(restrict_program(p, {1, 0}, {0.0, 0.0, 0.0}), core::InternalError);
+}
+
+TEST(Milp, TheRoundingGetsTheFractionalRelaxationAndAFeasiblePointStartsTheSearch) {
+  // The knapsack's relaxation is {1, 1, 2/3}: the rounding sees it, and its point ({0, 1, 1},
+  // the optimum) is taken, while an infeasible one (all three items) is ignored.
+  const LinearProgram p = knapsack(true);
+  for (const std::vector<double>& point : {std::vector<double>{0.0, 1.0, 1.0}, std::vector<double>{1.0, 1.0, 1.0}}) {
+    std::vector<double> seen;
+    MilpOptions o;
+    o.round = [&](const std::vector<double>& relaxation) {
+      seen = relaxation;
+      return point;
+    };
+    expect_optimum(p, solve_program(p, o), {0.0, 1.0, 1.0}, -220.0);
+    ASSERT_EQ(seen.size(), 3u);
+    EXPECT_NEAR(seen[0], 1.0, kTol);
+    EXPECT_NEAR(seen[1], 1.0, kTol);
+    EXPECT_NEAR(seen[2], 2.0 / 3.0, kTol);
+  }
+  // An integral relaxation needs no rounding.
+  LinearProgram tu;
+  tu.add_variable(1.0, 0.0, 1.0, true);
+  tu.add_variable(2.0, 0.0, 1.0, true);
+  tu.add_row({0, 1}, {1.0, 1.0}, 1.0);
+  MilpOptions o;
+  bool called = false;
+  o.round = [&](const std::vector<double>&) {
+    called = true;
+    return std::vector<double>{};
+  };
+  expect_optimum(tu, solve_program(tu, o), {1.0, 0.0}, 1.0);
+  EXPECT_FALSE(called);
+}
+
+TEST(Milp, SatisfiedByChecksBoundsRowsAndIntegrality) {
+  const LinearProgram p = knapsack(true);
+  EXPECT_TRUE(p.satisfied_by({0.0, 1.0, 1.0}));
+  EXPECT_FALSE(p.satisfied_by({1.0, 1.0, 1.0}));  // 60 > 50
+  EXPECT_FALSE(p.satisfied_by({0.5, 0.0, 0.0}));  // not integral
+  EXPECT_FALSE(p.satisfied_by({0.0, 2.0, 0.0}));  // above its bound
+  EXPECT_FALSE(p.satisfied_by({0.0, 1.0}));       // the wrong size
+  EXPECT_DOUBLE_EQ(p.objective({0.0, 1.0, 1.0}), -220.0);
+}
+
 // --- errors and names -------------------------------------------------------------------------
 
 TEST(Milp, InconsistentSizesAndColumnsThrow) {
