@@ -38,7 +38,10 @@
 //! XOR upper bounds (x ≤ y_a + y_b, x ≤ 2 − y_a − y_b) only for facets that appear in a rule or
 //! turn row (elsewhere minimization already makes x = |y_a − y_b|, so they change nothing); and
 //! the pad-every-surface-facet cut as a start (every hex inside, every ghost outside: always
-//! feasible), so a time limit still returns a valid PF.
+//! feasible), so a time limit still returns a valid PF. When the relaxation is fractional, its
+//! cut rounded at 1/2 and repaired in a small neighbourhood of the fractional cells (the program
+//! over those cells alone, the rest fixed) is a second start, often far cheaper: the relaxation
+//! is typically integral but at a few ghosts.
 
 #include "core/types.h"
 
