@@ -302,7 +302,7 @@ std::vector<char> fixed_outside(const Model& m, const Topology& tp, const std::v
   return fixed;
 }
 
-//! Rings of cells around the broken rows that repair_rounding() frees in turn.
+//! Rings of cells around the fractional ones that repair_rounding() frees in turn.
 constexpr std::array<int, 3> kRepairRings{2, 4, 8};
 //! Share of the time limit the repair may take; branch and cut gets the rest.
 constexpr double kRepairShare = 0.25;
