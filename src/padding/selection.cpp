@@ -309,6 +309,10 @@ constexpr double kRepairShare = 0.25;
 //! Largest neighbourhood worth a program of its own, as a share of the whole program's
 //! variables: CBC finds no point in time in a neighbourhood of a tenth of the whole either.
 constexpr double kRepairLargest = 0.05;
+//! Branch-and-cut nodes of each neighbourhood's program: a node limit rather than the time left
+//! decides when it stops, so the repair's point does not depend on the machine (the time left
+//! only caps it).
+constexpr int kRepairNodes = 500;
 //! A relaxation's value this far from 0 and 1 is fractional.
 constexpr double kFractional = 1e-6;
 
@@ -348,6 +352,8 @@ std::vector<double> repair_rounding(const Model& m, const Topology& tp, const st
     if (sub.program.num_variables() > kRepairLargest * m.program.num_variables()) break;
     if (!sub.consistent) continue;
     solve::MilpOptions o;
+    o.node_limit = kRepairNodes;  // the same point on a fast or a loaded machine
+    o.cuts_and_heuristics = true;  // a small program
     o.time_limit = seconds > 0 ? left : 0.0;
     const solve::MilpResult r = solve::solve_program(sub.program, o);
     core::logger().debug("selection: {} fractional cells, {} rings: {} variables, {} rows, {} ({:.6f} against {:.6f})",

@@ -4,7 +4,15 @@
 #include "core/log.h"
 #include "core/stopwatch.h"
 
+#include <CbcHeuristic.hpp>
+#include <CbcHeuristicFPump.hpp>
+#include <CbcHeuristicLocal.hpp>
+#include <CbcHeuristicRINS.hpp>
 #include <CbcModel.hpp>
+#include <CglClique.hpp>
+#include <CglGomory.hpp>
+#include <CglMixedIntegerRounding2.hpp>
+#include <CglProbing.hpp>
 #include <ClpSimplex.hpp>
 #include <CoinPackedMatrix.hpp>
 #include <OsiClpSolverInterface.hpp>
@@ -69,6 +77,34 @@ std::vector<double> integral_solution(const LinearProgram& p, const double* x) {
     out[j] = r;
   }
   return out;
+}
+
+//! CBC's usual cut generators and primal heuristics (MilpOptions::cuts_and_heuristics). The
+//! model copies them.
+void add_cuts_and_heuristics(CbcModel& model) {
+  CglProbing probing;
+  probing.setUsingObjective(1);
+  probing.setMaxPass(1);
+  probing.setMaxProbe(10);
+  probing.setMaxLook(10);
+  model.addCutGenerator(&probing, -1, "Probing");
+  CglGomory gomory;
+  gomory.setLimit(100);
+  model.addCutGenerator(&gomory, -1, "Gomory");
+  CglClique clique;
+  clique.setStarCliqueReport(false);  // they print to stdout otherwise
+  clique.setRowCliqueReport(false);
+  model.addCutGenerator(&clique, -1, "Clique");
+  CglMixedIntegerRounding2 mir;
+  model.addCutGenerator(&mir, -1, "MixedIntegerRounding2");
+  CbcRounding rounding(model);
+  model.addHeuristic(&rounding);
+  CbcHeuristicFPump pump(model);
+  model.addHeuristic(&pump);
+  CbcHeuristicLocal local(model);
+  model.addHeuristic(&local);
+  CbcHeuristicRINS rins(model);
+  model.addHeuristic(&rins);
 }
 
 //! The cheaper of the start and the caller's rounding of the relaxation (when each is feasible),
@@ -329,6 +365,8 @@ MilpResult solve_program(const LinearProgram& p, const MilpOptions& options) {
   // The time limit covers the relaxation too; CBC still gets a moment to return the start.
   if (options.time_limit > 0) model.setMaximumSeconds(std::max(options.time_limit - clock.seconds(), 1e-3));
   if (options.relative_gap > 0) model.setAllowableFractionGap(options.relative_gap);
+  if (options.node_limit > 0) model.setMaximumNodes(options.node_limit);
+  if (options.cuts_and_heuristics) add_cuts_and_heuristics(model);
   // Checked in one pass over the rows (best_start); CBC's own check re-solves the LP with the
   // integers fixed (seconds on the padding problem).
   if (!first.empty()) model.setBestSolution(first.data(), n, p.objective(first), false);

@@ -405,6 +405,26 @@ TEST(Milp, TheRoundingGetsTheFractionalRelaxationAndAFeasiblePointStartsTheSearc
   EXPECT_FALSE(called);
 }
 
+TEST(Milp, ANodeLimitStopsTheSameWayEachTimeAndTheToolkitKeepsOptima) {
+  // Market split is hard (parity: every row misses its odd target, cost >= 4), so 20 nodes do not
+  // prove anything: the run stops, and the point it keeps does not depend on the clock.
+  const LinearProgram split = market_split(4, 40, 7);
+  MilpOptions o;
+  o.node_limit = 20;
+  o.cuts_and_heuristics = true;
+  const MilpResult first = solve_program(split, o);
+  EXPECT_EQ(first.status, MilpStatus::Stopped) << status_name(first.status);
+  ASSERT_EQ(static_cast<int>(first.x.size()), split.num_variables());
+  EXPECT_LE(infeasibility(split, first.x), 1e-6);
+  EXPECT_GE(first.objective, 4.0 - 1e-6);
+  EXPECT_EQ(solve_program(split, o).x, first.x);
+  // The cut generators and heuristics change how, not what: the hand-solved optima again.
+  const LinearProgram p = knapsack(true);
+  MilpOptions with;
+  with.cuts_and_heuristics = true;
+  expect_optimum(p, solve_program(p, with), {0.0, 1.0, 1.0}, -220.0);
+}
+
 TEST(Milp, SatisfiedByChecksBoundsRowsAndIntegrality) {
   const LinearProgram p = knapsack(true);
   EXPECT_TRUE(p.satisfied_by({0.0, 1.0, 1.0}));
