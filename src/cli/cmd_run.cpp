@@ -156,6 +156,15 @@ std::string plan_summary(const pipeline::RunResult& r) {
                          : fmt::format(" (not proven optimal, gap {:.1f} %)", 100.0 * r.padding_plan_gap));
 }
 
+//! ", fell back to ..." after the optimize line: which fallback gave the mesh; empty for none.
+std::string optimize_fallback_summary(const pipeline::RunResult& r) {
+  if (r.optimize_fallback == "none") return {};
+  if (r.optimize_fallback.ends_with("padding"))
+    return ", fell back to " + r.optimize_fallback + ": " + padding_summary(r);
+  if (r.optimize_fallback.ends_with("barrier")) return ", optimized again with a " + r.optimize_fallback;
+  return ", regridded: " + r.optimize_fallback;
+}
+
 std::string summary_table(const pipeline::RunResult& r) {
   std::string t;
   t += "| stage | time (s) | result |\n|---|---:|---|\n";
@@ -179,10 +188,7 @@ std::string summary_table(const pipeline::RunResult& r) {
       what = fmt::format("scale {:.4g}: {} hexes, {} quads; mSJ {} aSJ {}, {} inverted", r.grid_scale, r.hexes,
                          r.quads, figure(r.msj_gridded), figure(r.asj_gridded), count(r.inverted_gridded));
     else if (s.name == "optimize")
-      what = fmt::format("{} iterations{}", count(r.iterations_optimize),
-                         r.optimize_fallback == "none"             ? std::string()
-                         : r.optimize_fallback.ends_with("padding") ? ", fell back to " + r.optimize_fallback + ": " + padding_summary(r)
-                                                                   : ", regridded: " + r.optimize_fallback);
+      what = fmt::format("{} iterations{}", count(r.iterations_optimize), optimize_fallback_summary(r));
     else if (s.name == "pad")
       what = r.padding_added < 0 ? r.padding
                                  : fmt::format("{}: {}{}", r.padding, padding_summary(r), plan_summary(r));
@@ -305,7 +311,7 @@ void register_run(CLI::App& app) {
   sub->add_option("--inject-failure", opts->run.inject_failure, "Testing only: make this stage fail at its start")
       ->check(CLI::IsMember({"input", "construct", "simplify", "fabricate", "hexmesh", "optimize", "quality", "simplify-step-1",
                              "simplify-step-2", "simplify-step-3", "optimize-step-1", "optimize-step-2",
-                             "optimize-step-3", "optimize-step-4", "pad"}))
+                             "optimize-step-3", "optimize-step-4", "optimize-crossing-1", "pad"}))
       ->group("");
   opts->command = sub;
   std::vector<CLI::Option*> expert = add_repair_options(*sub, opts->run.repair);

@@ -25,6 +25,7 @@
 #include <iterator>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include <sys/resource.h>
 
@@ -39,6 +40,10 @@ int injected_steps(const std::string& inject, const std::string& prefix) {
   const char n = inject.back();
   return n >= '1' && n <= '4' ? n - '0' : 0;
 }
+
+//! How much stiffer the boundary barrier of the optimize stage's first fallback is (a boundary
+//! that crosses itself; optimize::OptimizeOptions::boundary_barrier).
+constexpr double kBarrierRetry = 4.0;
 
 //! Every stage's name, in order (simplify and optimize can be turned off).
 constexpr const char* kStages[] = {"input",    "construct", "simplify", "fabricate",
@@ -145,9 +150,9 @@ std::string fold_summary(const optimize::FoldoverReport& fold) {
 }
 
 //! Optimize the hex mesh in place and run the global fold-over check on the result.
-optimize::FoldoverReport optimize_and_check(core::HexMesh& hex, const ConstructInput& in, const RunOptions& o,
-                                            RunResult& r) {
-  const optimize::OptimizeResult opt = optimize::optimize_hex_mesh(hex, in.target, o.optimize_options);
+optimize::FoldoverReport optimize_and_check(core::HexMesh& hex, const ConstructInput& in,
+                                            const optimize::OptimizeOptions& oo, RunResult& r) {
+  const optimize::OptimizeResult opt = optimize::optimize_hex_mesh(hex, in.target, oo);
   r.iterations_optimize = opt.untangle.iterations + opt.quality.iterations;
   return optimize::check_foldover(hex);
 }
@@ -293,8 +298,9 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   const core::Stopwatch clock;
   RunResult r;
   if (o.target_hexes <= 0) throw core::InputError("the target number of hexes must be positive");
-  const bool injects_step =
-      injected_steps(o.inject_failure, "simplify-step-") > 0 || injected_steps(o.inject_failure, "optimize-step-") > 0;
+  const bool injects_step = injected_steps(o.inject_failure, "simplify-step-") > 0 ||
+                            injected_steps(o.inject_failure, "optimize-step-") > 0 ||
+                            injected_steps(o.inject_failure, "optimize-crossing-") > 0;
   if (!o.inject_failure.empty() && !injects_step &&
       std::find(std::begin(kStages), std::end(kStages), o.inject_failure) == std::end(kStages))
     throw core::InputError("inject_failure: no stage named " + o.inject_failure);
@@ -403,16 +409,38 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   if (o.optimize)
     run.stage("optimize", [&] {
       // Testing only: "optimize-step-N" counts the first N results as failed (RunOptions).
+      // "optimize-crossing-N": the first N results count as boundaries that cross themselves.
       const int injected = injected_steps(o.inject_failure, "optimize-step-");
+      const int injected_crossings = injected_steps(o.inject_failure, "optimize-crossing-");
       int checks = 0;
+      bool crossing = false;  // the last result failed by its boundary crossing itself only
       auto why_failed = [&](const optimize::FoldoverReport& fold) {
-        return checks++ < injected ? std::string("injected failure") : fold.ok() ? std::string() : fold_summary(fold);
+        const int k = checks++;
+        crossing = k < injected_crossings || (k >= injected && fold.inverted_hexes == 0 &&
+                                              fold.nonpositive_scaled_jacobian == 0 && fold.boundary_self_intersections > 0);
+        if (k < injected) return std::string("injected failure");
+        if (k < injected_crossings) return std::string("injected boundary crossing");
+        return fold.ok() ? std::string() : fold_summary(fold);
       };
-      std::string why = why_failed(optimize_and_check(hex, in, o, r));
+      const core::HexMesh gridded = hex;
+      std::string why = why_failed(optimize_and_check(hex, in, o.optimize_options, r));
       auto record_failure = [&] {
         r.optimize_tried.push_back(
             fmt::format("{}: {}", r.optimize_fallback == "none" ? "first grid" : r.optimize_fallback, why));
       };
+      // A valid mesh whose boundary crosses itself: the same grid once more, with the barrier
+      // that keeps the boundary quads facing the target's side kBarrierRetry times stiffer. Its
+      // cost is one optimization, and it keeps the hexes the user asked for (padding adds some).
+      if (!why.empty() && crossing && o.optimize_fallbacks) {
+        record_failure();
+        core::logger().warn("optimize: {}; trying a stiffer boundary barrier", why);
+        r.optimize_fallback = "stiffer boundary barrier";
+        core::HexMesh first = std::exchange(hex, gridded);
+        optimize::OptimizeOptions stiffer = o.optimize_options;
+        stiffer.boundary_barrier *= kBarrierRetry;
+        why = why_failed(optimize_and_check(hex, in, stiffer, r));
+        if (!why.empty()) hex = std::move(first);  // padding pads the first result, as without this retry
+      }
       // Padding first (selective, then global): the new layer frees the boundary hexes the
       // gridding squashed, and costs one optimization instead of a new gridding's (thesis ch. 4).
       for (const padding::PaddingMode mode : {padding::PaddingMode::Selective, padding::PaddingMode::Global}) {
@@ -443,7 +471,7 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
         hex = grid_and_write(map, fb.target_hexes, fb.sizing, in, out_dir, r, add_file);
         r.optimize_fallback = fb.name;
         r.padding = "none";
-        why = why_failed(optimize_and_check(hex, in, o, r));
+        why = why_failed(optimize_and_check(hex, in, o.optimize_options, r));
       }
       if (!why.empty()) throw core::GeometryError("the optimized hex mesh fails the global fold-over check: " + why);
       io::write_mesh(out_dir / "hex_optimized.mesh", core::to_mesh_data(hex));

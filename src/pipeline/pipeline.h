@@ -49,8 +49,9 @@ struct RunOptions {
   mesh::GridSizing grid_sizing = mesh::GridSizing::Uniform;  //!< cells per chart interval (mesh/grid.h)
   bool optimize = true;                    //!< optimize the gridded hex mesh
   optimize::OptimizeOptions optimize_options;
-  //! When the optimized mesh fails the fold-over check: pad it selectively, then globally, and
-  //! optimize again;
+  //! When the optimized mesh fails the fold-over check: when only its boundary crosses itself,
+  //! optimize the grid again with a stiffer boundary barrier; then pad the first result
+  //! selectively, then globally, and optimize again;
   //! then grid the map again with its own sizing, then twice as fine, and optimize each
   //! (hex.mesh and quad.vtk are replaced).
   bool optimize_fallbacks = true;
@@ -79,7 +80,9 @@ struct RunOptions {
   //! core::GeometryError "injected failure", exactly as a stage that could not reach a result;
   //! "simplify-step-N": the first N steps of the simplification count as failed (its
   //! fallbacks, simplify.h); "optimize-step-N" (N in 1..4): the first N optimized meshes count
-  //! as failing the fold-over check (optimize_fallbacks). Empty (the default): never.
+  //! as failing the fold-over check (optimize_fallbacks); "optimize-crossing-N": the first N
+  //! count as meshes whose boundary crosses itself (the stiffer barrier's retry first). Empty
+  //! (the default): never.
   std::string inject_failure;
 };
 

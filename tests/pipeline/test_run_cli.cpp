@@ -526,6 +526,27 @@ TEST(RunCli, OptimizeFallsBackToPaddingThenNewGriddingsAndTheReportNamesThem) {
   EXPECT_EQ(read_report(dir / "out4")["optimize_tried"].size(), 4u);
 }
 
+// A mesh whose boundary crosses itself (and nothing else wrong) is first optimized again from the
+// same grid with a stiffer boundary barrier, before any padding or new gridding: the report names
+// that fallback, and the final mesh has the gridded hexes, no more.
+TEST(RunCli, ABoundaryThatCrossesItselfIsOptimizedAgainWithAStifferBarrierFirst) {
+  const fs::path dir = temp_dir("optimize_crossing");
+  write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
+  const CliResult r = run(dir / "box.obj", dir / "out", "--hexes 200 --inject-failure optimize-crossing-1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = read_report(dir / "out");
+  EXPECT_EQ(j["optimize_fallback"], "stiffer boundary barrier");
+  ASSERT_EQ(j["optimize_tried"].size(), 1u);
+  EXPECT_EQ(j["optimize_tried"][0], "first grid: injected boundary crossing");
+  EXPECT_EQ(j["final"]["inverted"], 0);
+  const core::HexMesh gridded = core::hexes_of(io::read_mesh(dir / "out" / "hex.mesh"));
+  const core::HexMesh final_mesh = core::hexes_of(io::read_mesh(dir / "out" / "hex_optimized.mesh"));
+  EXPECT_EQ(gridded.cells, final_mesh.cells);
+  EXPECT_EQ(static_cast<int>(final_mesh.cells.size()), j["hexes"].get<int>());
+  // A failure that is not a crossing skips this retry (the padding fallbacks come first there:
+  // OptimizeFallsBackToPaddingThenNewGriddingsAndTheReportNamesThem).
+}
+
 TEST(RunCli, GlobalPaddingOnRequestAddsThePadStage) {
   const fs::path dir = temp_dir("padding_global");
   write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
