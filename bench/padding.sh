@@ -6,6 +6,8 @@
 #   env: OUT=out/bench (chain.sh's output), ONLY="surface/bunny tet/cup ..." pads just those,
 #   MODE=global|selective (default global), ANALYSIS=gridded: selective padding analyses the
 #   gridded hex.mesh instead of the optimized mesh, LAMBDA (selective's λ, default the tool's).
+# After MODE=global and MODE=selective runs, bench/table41.py OUT puts both beside the unpadded
+# meshes (thesis Table 4.1).
 set -uo pipefail
 table_only=0
 [[ "${1:-}" == --table-only ]] && { table_only=1; shift; }
