@@ -431,7 +431,7 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
       // A valid mesh whose boundary crosses itself: the same grid once more, with the barrier
       // that keeps the boundary quads facing the target's side kBarrierRetry times stiffer. Its
       // cost is one optimization, and it keeps the hexes the user asked for (padding adds some).
-      if (!why.empty() && crossing && o.optimize_fallbacks) {
+      if (!why.empty() && crossing && o.optimize_fallbacks && o.optimize_options.boundary_barrier > 0) {
         record_failure();
         core::logger().warn("optimize: {}; trying a stiffer boundary barrier", why);
         r.optimize_fallback = "stiffer boundary barrier";
