@@ -363,7 +363,7 @@ std::vector<double> repair_rounding(const Model& m, const Topology& tp, const st
     std::vector<double> full = sub.expand(rounded, r.x);
     if (!m.program.satisfied_by(full)) continue;
     if (best.empty() || m.program.objective(full) < m.program.objective(best)) best = std::move(full);
-    if (m.program.objective(best) - bound <= 1e-7 * std::max(1.0, std::abs(bound))) break;
+    if (solve::meets_bound(m.program.objective(best), bound)) break;
   }
   return best;
 }

@@ -115,8 +115,7 @@ std::vector<double> best_start(const LinearProgram& p, const MilpOptions& option
   if (options.round && si.isProvenOptimal()) {
     const double* x = si.getColSolution();
     std::vector<double> rounded = options.round(std::vector<double>(x, x + p.num_variables()));
-    if (static_cast<int>(rounded.size()) == p.num_variables() && p.satisfied_by(rounded) &&
-        (best.empty() || p.objective(rounded) < p.objective(best)))
+    if (p.satisfied_by(rounded) && (best.empty() || p.objective(rounded) < p.objective(best)))
       best = std::move(rounded);
   }
   return best;
@@ -241,6 +240,10 @@ RestrictedProgram restrict_program(const LinearProgram& p, const std::vector<cha
   return r;
 }
 
+bool meets_bound(double objective, double bound) {
+  return objective - bound <= kBoundTolerance * std::max(1.0, std::abs(bound));
+}
+
 const char* status_name(MilpStatus status) {
   switch (status) {
     case MilpStatus::Optimal: return "optimal";
@@ -348,7 +351,7 @@ MilpResult solve_program(const LinearProgram& p, const MilpOptions& options) {
   // does, no integer point costs less, and branch and cut has nothing left to prove.
   const std::vector<double> first = best_start(p, options, si);
   if (!first.empty() && si.isProvenOptimal() &&
-      p.objective(first) - si.getObjValue() <= kBoundTolerance * std::max(1.0, std::abs(si.getObjValue()))) {
+      meets_bound(p.objective(first), si.getObjValue())) {
     res.solver = "CLP dual simplex (LP relaxation, its bound met by a rounded point)";
     res.status = MilpStatus::Optimal;
     res.objective = p.objective(first);

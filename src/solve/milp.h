@@ -110,6 +110,10 @@ RestrictedProgram restrict_program(const LinearProgram& p, const std::vector<cha
 //! \throw core::InternalError on inconsistent sizes or out-of-range columns
 MilpResult solve_program(const LinearProgram& program, const MilpOptions& options = {});
 
+//! Whether an integer point of cost `objective` is optimal because it costs what the relaxation's
+//! optimum `bound` does (within CLP's relative accuracy, 1e-7).
+bool meets_bound(double objective, double bound);
+
 //! "optimal", "infeasible", ...
 const char* status_name(MilpStatus status);
 
