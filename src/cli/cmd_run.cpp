@@ -311,7 +311,8 @@ void register_run(CLI::App& app) {
   sub->add_option("--inject-failure", opts->run.inject_failure, "Testing only: make this stage fail at its start")
       ->check(CLI::IsMember({"input", "construct", "simplify", "fabricate", "hexmesh", "optimize", "quality", "simplify-step-1",
                              "simplify-step-2", "simplify-step-3", "optimize-step-1", "optimize-step-2",
-                             "optimize-step-3", "optimize-step-4", "optimize-crossing-1", "pad"}))
+                             "optimize-step-3", "optimize-step-4", "optimize-crossing-1", "optimize-distance-1",
+                             "optimize-distance-2", "pad"}))
       ->group("");
   opts->command = sub;
   std::vector<CLI::Option*> expert = add_repair_options(*sub, opts->run.repair);

@@ -13,6 +13,8 @@
 #include "optimize/foldover_check.h"
 #include "optimize/hex_optimize.h"
 #include "pipeline/input.h"
+#include "pipeline/optimize_stage.h"
+#include "pipeline/stage_steps.h"
 #include "quality/report.h"
 #include "quality/scaled_jacobian.h"
 
@@ -33,18 +35,6 @@ namespace polycube::pipeline {
 
 namespace {
 
-
-//! Testing only: N for an injected failure "<prefix>N" with N in 1..4 (RunOptions::inject_failure), else 0.
-int injected_steps(const std::string& inject, const std::string& prefix) {
-  if (inject.size() != prefix.size() + 1 || inject.rfind(prefix, 0) != 0) return 0;
-  const char n = inject.back();
-  return n >= '1' && n <= '4' ? n - '0' : 0;
-}
-
-//! How much stiffer the boundary barrier of the optimize stage's first fallback is (a boundary
-//! that crosses itself; optimize::OptimizeOptions::boundary_barrier).
-constexpr double kBarrierRetry = 4.0;
-
 //! Every stage's name, in order (simplify and optimize can be turned off).
 constexpr const char* kStages[] = {"input",    "construct", "simplify", "fabricate",
                                    "hexmesh",  "optimize",  "pad",      "quality"};
@@ -59,11 +49,6 @@ double polycube_volume(const core::PolycubeMap& map) {
     v += a.dot(b.cross(c)) / 6.0;
   }
   return v;
-}
-
-void write_vtk(const std::filesystem::path& path, core::MeshData data, std::vector<core::Field> fields) {
-  data.cell_data = std::move(fields);
-  io::write_mesh(path, data);
 }
 
 //! Runs the stages in order; the first failure stops the chain.
@@ -115,102 +100,6 @@ class Runner {
   int index_ = 0;
 };
 
-//! Grid the map at about `target` hexes with `sizing`; write hex.mesh and quad.vtk and record
-//! the gridded mesh's figures in r. Returns the hex mesh.
-core::HexMesh grid_and_write(const core::PolycubeMap& map, int target, mesh::GridSizing sizing,
-                             const ConstructInput& in, const std::filesystem::path& out_dir, RunResult& r,
-                             const std::function<void(const std::filesystem::path&)>& wrote) {
-  mesh::GridOptions go;
-  go.target_hexes = target;
-  go.sizing = sizing;
-  mesh::GridResult g = mesh::grid_polycube(map, go);
-  if (!g.snapping.ok())
-    throw core::GeometryError("snapping the polycube to the lattice broke it: " + g.snapping.summary());
-  r.grid_scale = g.scale;
-  r.hexes = static_cast<int>(g.hex_model.cells.size());
-  r.quads = static_cast<int>(g.quad_model.cells.size());
-  const quality::ScaledJacobianSummary sj = quality::scaled_jacobian(g.hex_model);
-  r.inverted_gridded = sj.inverted + sj.invalid;
-  r.msj_gridded = sj.min;
-  r.asj_gridded = sj.average;
-  io::write_mesh(out_dir / "hex.mesh", core::to_mesh_data(g.hex_model));
-  wrote(out_dir / "hex.mesh");
-  quality::ReportOptions qo;
-  qo.structure = true;
-  qo.target = &in.target;
-  const quality::QuadReport qr = quality::quad_report(g.quad_model, qo);
-  write_vtk(out_dir / "quad.vtk", core::to_mesh_data(g.quad_model), qr.fields());
-  wrote(out_dir / "quad.vtk");
-  return std::move(g.hex_model);
-}
-
-std::string fold_summary(const optimize::FoldoverReport& fold) {
-  return fmt::format("{} inverted hexes, {} with a non-positive scaled Jacobian, {} boundary self-intersections",
-                     fold.inverted_hexes, fold.nonpositive_scaled_jacobian, fold.boundary_self_intersections);
-}
-
-//! Optimize the hex mesh in place and run the global fold-over check on the result.
-optimize::FoldoverReport optimize_and_check(core::HexMesh& hex, const ConstructInput& in,
-                                            const optimize::OptimizeOptions& oo, RunResult& r) {
-  const optimize::OptimizeResult opt = optimize::optimize_hex_mesh(hex, in.target, oo);
-  r.iterations_optimize = opt.untangle.iterations + opt.quality.iterations;
-  return optimize::check_foldover(hex);
-}
-
-//! The facets `mode` pads on this mesh; empty when selective padding finds nothing to pad.
-std::vector<std::uint8_t> padding_facets(const core::HexMesh& hex, padding::PaddingMode mode, const RunOptions& o,
-                                         RunResult& r) {
-  if (mode == padding::PaddingMode::Global) return padding::boundary_selection(hex);
-  const padding::SelectivePlan plan =
-      padding::plan_selective_padding(hex, o.padding_analysis, o.padding_selection);
-  r.padding_hard_facets = plan.analysis.hard_facets;
-  r.padding_plan_optimal = plan.selection.optimal;
-  r.padding_plan_gap = plan.selection.gap;
-  r.padding_plan_solver = plan.selection.solver;
-  r.padding_analysis_seconds = plan.analysis.seconds;
-  r.padding_solve_seconds = plan.selection.seconds;
-  r.padding_selected_facets = plan.selection.selected;
-  r.padding_edge_turns = plan.selection.edge_turns;
-  r.padding_vertex_turns = plan.selection.vertex_turns;
-  if (plan.selection.selected == 0) return {};
-  return plan.selection.facets;
-}
-
-//! Pad the mesh (`mode`), optimize and check it (padding/padding.h); record the figures and
-//! write hex_padded.mesh and hex_padded.vtk when the result passes the check. Nothing when
-//! there is nothing to pad. A facet set the insertion refuses comes back as an error, like a
-//! failed check.
-std::optional<padding::PadResult> pad_and_record(const core::HexMesh& hex, const ConstructInput& in,
-                                                 const RunOptions& o, padding::PaddingMode mode, const std::string& how,
-                                                 const std::filesystem::path& out_dir, RunResult& r,
-                                                 const std::function<void(const std::filesystem::path&)>& wrote) {
-  // Two steps for the progress bar: which facets (the selective plan solves a MILP), then the
-  // sheet and its optimization.
-  core::ProgressTask progress("pad", 2);
-  const std::vector<std::uint8_t> facets = padding_facets(hex, mode, o, r);
-  progress.step();
-  if (facets.empty()) return std::nullopt;
-  padding::PadResult p = padding::pad_hex_mesh(hex, in.target, facets, o.padding_options);
-  progress.step();
-  progress.finish();
-  r.padding = how;
-  r.padding_added = p.added_hexes;
-  r.singular_vertices_before = p.before.singular_vertices;
-  r.singular_edges_before = p.before.singular_edges;
-  r.singular_vertices_after = p.after.singular_vertices;
-  r.singular_edges_after = p.after.singular_edges;
-  r.padding_insert_seconds = p.insert_seconds;
-  r.padding_optimize_seconds = p.optimization.seconds;
-  r.iterations_optimize = p.optimization.untangle.iterations + p.optimization.quality.iterations;
-  if (p.check.ok()) {
-    io::write_mesh(out_dir / "hex_padded.mesh", core::to_mesh_data(p.mesh));
-    wrote(out_dir / "hex_padded.mesh");
-    io::write_mesh(out_dir / "hex_padded.vtk", padding::padded_mesh_data(p));
-    wrote(out_dir / "hex_padded.vtk");
-  }
-  return p;
-}
-
 //! Remove the files an earlier run wrote into this folder, and only those: a run that writes
 //! fewer (--no-optimize after a full run, a padding not kept) would otherwise leave an earlier
 //! hex_optimized.mesh or hex_padded.mesh beside its own files, as if it had written them.
@@ -236,33 +125,6 @@ bool pads(const RunOptions& o) { return o.hexmesh && o.optimize && o.padding != 
 bool padding_pays(const padding::PadResult& p, const RunOptions& o) {
   const double after = p.after.scaled_jacobian.min;
   return after >= p.before.scaled_jacobian.min || after >= o.padding_usable_min_sj;
-}
-
-//! Forget a padded mesh that is not kept (only an injected failure can reject a mesh that
-//! passed the check, the only one pad_and_record writes).
-void discard_padded(const std::filesystem::path& out_dir, RunResult& r) {
-  for (const char* name : {"hex_padded.mesh", "hex_padded.vtk"}) {
-    std::error_code ec;
-    std::filesystem::remove(out_dir / name, ec);
-    std::erase(r.files, (out_dir / name).string());
-  }
-}
-
-//! A second gridding for the optimizer when the first one's result fails the fold-over check.
-struct OptimizeFallback {
-  std::string name;
-  int target_hexes;
-  mesh::GridSizing sizing;
-};
-
-//! The fallbacks in order: the map's own sizing (hexes of more even size in the model, so
-//! fewer squashed ones in thin parts), then a grid twice as fine (more room in the parts where
-//! the optimizer stayed stuck).
-std::vector<OptimizeFallback> optimize_fallbacks(int target, mesh::GridSizing sizing) {
-  std::vector<OptimizeFallback> out;
-  if (sizing != mesh::GridSizing::Map) out.push_back({"map sizing", target, mesh::GridSizing::Map});
-  out.push_back({"finer grid (2x hexes)", 2 * target, sizing});
-  return out;
 }
 
 //! The fabricate stage: decompose, check, write parts/ (nothing when a part fails its checks or
@@ -300,7 +162,8 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   if (o.target_hexes <= 0) throw core::InputError("the target number of hexes must be positive");
   const bool injects_step = injected_steps(o.inject_failure, "simplify-step-") > 0 ||
                             injected_steps(o.inject_failure, "optimize-step-") > 0 ||
-                            injected_steps(o.inject_failure, "optimize-crossing-") > 0;
+                            injected_steps(o.inject_failure, "optimize-crossing-") > 0 ||
+                            injected_steps(o.inject_failure, "optimize-distance-") > 0;
   if (!o.inject_failure.empty() && !injects_step &&
       std::find(std::begin(kStages), std::end(kStages), o.inject_failure) == std::end(kStages))
     throw core::InputError("inject_failure: no stage named " + o.inject_failure);
@@ -404,79 +267,10 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   };
   run.stage("hexmesh", [&] { hex = grid_and_write(map, o.target_hexes, grid_sizing, in, out_dir, r, add_file); });
 
-  // 5. optimization (hex mesh untangling and quality improvement); when the result fails the
-  //    fold-over check, the map is gridded again (OptimizeFallback) and optimized once more.
+  // 5. optimization (hex mesh untangling and quality improvement), with its fallbacks when the
+  //    result fails the fold-over check or stays too far from the input (optimize_stage.h).
   if (o.optimize)
-    run.stage("optimize", [&] {
-      // Testing only: "optimize-step-N" counts the first N results as failed (RunOptions).
-      // "optimize-crossing-N": the first N results count as boundaries that cross themselves.
-      const int injected = injected_steps(o.inject_failure, "optimize-step-");
-      const int injected_crossings = injected_steps(o.inject_failure, "optimize-crossing-");
-      int checks = 0;
-      bool crossing = false;  // the last result failed by its boundary crossing itself only
-      auto why_failed = [&](const optimize::FoldoverReport& fold) {
-        const int k = checks++;
-        crossing = k < injected_crossings || (k >= injected && fold.inverted_hexes == 0 &&
-                                              fold.nonpositive_scaled_jacobian == 0 && fold.boundary_self_intersections > 0);
-        if (k < injected) return std::string("injected failure");
-        if (k < injected_crossings) return std::string("injected boundary crossing");
-        return fold.ok() ? std::string() : fold_summary(fold);
-      };
-      const core::HexMesh gridded = hex;
-      std::string why = why_failed(optimize_and_check(hex, in, o.optimize_options, r));
-      auto record_failure = [&] {
-        r.optimize_tried.push_back(
-            fmt::format("{}: {}", r.optimize_fallback == "none" ? "first grid" : r.optimize_fallback, why));
-      };
-      // A valid mesh whose boundary crosses itself: the same grid once more, with the barrier
-      // that keeps the boundary quads facing the target's side kBarrierRetry times stiffer. Its
-      // cost is one optimization, and it keeps the hexes the user asked for (padding adds some).
-      if (!why.empty() && crossing && o.optimize_fallbacks && o.optimize_options.boundary_barrier > 0) {
-        record_failure();
-        core::logger().warn("optimize: {}; trying a stiffer boundary barrier", why);
-        r.optimize_fallback = "stiffer boundary barrier";
-        core::HexMesh first = std::exchange(hex, gridded);
-        optimize::OptimizeOptions stiffer = o.optimize_options;
-        stiffer.boundary_barrier *= kBarrierRetry;
-        why = why_failed(optimize_and_check(hex, in, stiffer, r));
-        if (!why.empty()) hex = std::move(first);  // padding pads the first result, as without this retry
-      }
-      // Padding first (selective, then global): the new layer frees the boundary hexes the
-      // gridding squashed, and costs one optimization instead of a new gridding's (thesis ch. 4).
-      for (const padding::PaddingMode mode : {padding::PaddingMode::Selective, padding::PaddingMode::Global}) {
-        if (why.empty() || !o.optimize_fallbacks) break;
-        const std::string name = fmt::format("{} padding", padding::mode_name(mode));
-        record_failure();
-        core::logger().warn("optimize: {}; trying {}", why, name);
-        r.optimize_fallback = name;
-        try {
-          std::optional<padding::PadResult> p =
-              pad_and_record(hex, in, o, mode, fmt::format("{} (optimize fallback)", padding::mode_name(mode)), out_dir,
-                             r, add_file);
-          if (!p) {
-            why = "nothing to pad";
-            continue;
-          }
-          why = why_failed(p->check);
-          if (why.empty()) hex = std::move(p->mesh);
-          else discard_padded(out_dir, r);
-        } catch (const core::Error& e) {
-          why = e.what();
-        }
-      }
-      for (const OptimizeFallback& fb : optimize_fallbacks(o.target_hexes, grid_sizing)) {
-        if (why.empty() || !o.optimize_fallbacks) break;
-        record_failure();
-        core::logger().warn("optimize: {}; gridding again: {}", why, fb.name);
-        hex = grid_and_write(map, fb.target_hexes, fb.sizing, in, out_dir, r, add_file);
-        r.optimize_fallback = fb.name;
-        r.padding = "none";
-        why = why_failed(optimize_and_check(hex, in, o.optimize_options, r));
-      }
-      if (!why.empty()) throw core::GeometryError("the optimized hex mesh fails the global fold-over check: " + why);
-      io::write_mesh(out_dir / "hex_optimized.mesh", core::to_mesh_data(hex));
-      add_file(out_dir / "hex_optimized.mesh");
-    });
+    run.stage("optimize", [&] { hex = optimize_with_fallbacks(hex, map, grid_sizing, in, o, out_dir, r, add_file); });
 
   // 6. padding (selective by default; unless the optimize stage has padded already). A padding
   //    that fails, or costs quality (padding_pays), leaves the optimized mesh as the result: the

@@ -53,7 +53,9 @@ struct RunOptions {
   //! optimize the grid again with a stiffer boundary barrier; then pad the first result
   //! selectively, then globally, and optimize again;
   //! then grid the map again with its own sizing, then twice as fine, and optimize each
-  //! (hex.mesh and quad.vtk are replaced).
+  //! (hex.mesh and quad.vtk are replaced). A valid mesh of the first grid farther from the input
+  //! than optimize_options.hausdorff_bound: grid twice as fine, keep it when valid and closer.
+  //! The steps and why: pipeline/optimize_stage.h.
   bool optimize_fallbacks = true;
   //! Padding after the optimization (stage "pad"): none, a layer under the whole boundary, or
   //! selective (where the map distorts the shape).
@@ -81,8 +83,9 @@ struct RunOptions {
   //! "simplify-step-N": the first N steps of the simplification count as failed (its
   //! fallbacks, simplify.h); "optimize-step-N" (N in 1..4): the first N optimized meshes count
   //! as failing the fold-over check (optimize_fallbacks); "optimize-crossing-N": the first N
-  //! count as meshes whose boundary crosses itself (the stiffer barrier's retry first). Empty
-  //! (the default): never.
+  //! count as meshes whose boundary crosses itself (the stiffer barrier's retry first);
+  //! "optimize-distance-N": the first N valid meshes count as too far from the input (1: the
+  //! finer grid for the distance is kept; 2: it is not closer, so the first mesh stays). Empty (the default): never.
   std::string inject_failure;
 };
 

@@ -547,6 +547,48 @@ TEST(RunCli, ABoundaryThatCrossesItselfIsOptimizedAgainWithAStifferBarrierFirst)
   // OptimizeFallsBackToPaddingThenNewGriddingsAndTheReportNamesThem).
 }
 
+// A valid mesh farther from the input than the optimizer's Hausdorff bound (here: counted so by
+// `--inject-failure optimize-distance-1`) is followed by the map gridded twice as fine; the finer
+// mesh is kept when valid and closer, and hex.mesh is its gridding. When the finer mesh is not
+// closer (`optimize-distance-2`), the first mesh stays and hex.mesh is its gridding again.
+TEST(RunCli, AMeshTooFarFromTheInputIsGriddedTwiceAsFine) {
+  const fs::path dir = temp_dir("optimize_distance");
+  write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
+  const CliResult plain = run(dir / "box.obj", dir / "plain", "--hexes 200 --padding none");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  const auto p = read_report(dir / "plain");
+  EXPECT_EQ(p["optimize_fallback"], "none");  // the box's mesh is on its surface
+  EXPECT_TRUE(p["optimize_tried"].empty());
+
+  const CliResult finer = run(dir / "box.obj", dir / "finer", "--hexes 200 --padding none --inject-failure optimize-distance-1");
+  ASSERT_EQ(finer.exit_code, 0) << finer.err;
+  const auto f = read_report(dir / "finer");
+  EXPECT_EQ(f["optimize_fallback"], "finer grid for the distance (2x hexes)");
+  ASSERT_EQ(f["optimize_tried"].size(), 1u);
+  EXPECT_EQ(f["optimize_tried"][0], "first grid: injected distance");
+  EXPECT_NE(finer.out.find("regridded: finer grid for the distance (2x hexes)"), std::string::npos) << finer.out;
+  EXPECT_GT(f["hexes"].get<int>(), p["hexes"].get<int>());
+  const core::HexMesh gridded = core::hexes_of(io::read_mesh(dir / "finer" / "hex.mesh"));
+  const core::HexMesh final_mesh = core::hexes_of(io::read_mesh(dir / "finer" / "hex_optimized.mesh"));
+  EXPECT_EQ(gridded.cells, final_mesh.cells);
+  EXPECT_EQ(static_cast<int>(final_mesh.cells.size()), f["hexes"].get<int>());
+  EXPECT_EQ(f["final"]["inverted"], 0);
+
+  const CliResult kept = run(dir / "box.obj", dir / "kept", "--hexes 200 --padding none --inject-failure optimize-distance-2");
+  ASSERT_EQ(kept.exit_code, 0) << kept.err;
+  const auto k = read_report(dir / "kept");
+  EXPECT_EQ(k["optimize_fallback"], "none");
+  ASSERT_EQ(k["optimize_tried"].size(), 2u);
+  EXPECT_EQ(k["optimize_tried"][0], "first grid: injected distance");
+  EXPECT_EQ(k["optimize_tried"][1], "finer grid for the distance (2x hexes): injected distance (not kept)");
+  EXPECT_EQ(k["hexes"], p["hexes"]);
+  // The first grid's files, as a run without the fallback writes them.
+  for (const char* name : {"hex.mesh", "hex_optimized.mesh"})
+    EXPECT_EQ(core::hexes_of(io::read_mesh(dir / "kept" / name)).points,
+              core::hexes_of(io::read_mesh(dir / "plain" / name)).points)
+        << name;
+}
+
 TEST(RunCli, GlobalPaddingOnRequestAddsThePadStage) {
   const fs::path dir = temp_dir("padding_global");
   write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));

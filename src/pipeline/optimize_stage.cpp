@@ -1,0 +1,214 @@
+//! The optimize stage and its fallbacks (see optimize_stage.h).
+#include "pipeline/optimize_stage.h"
+
+#include "core/errors.h"
+#include "core/log.h"
+#include "io/mesh_io.h"
+#include "optimize/foldover_check.h"
+#include "optimize/hex_optimize.h"
+#include "quality/surface_distance.h"
+
+#include <fmt/format.h>
+
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace polycube::pipeline {
+
+namespace {
+
+//! How much stiffer the boundary barrier of the first fallback is (a boundary that crosses
+//! itself; optimize::OptimizeOptions::boundary_barrier).
+constexpr double kBarrierRetry = 4.0;
+
+//! A new gridding of the map for the optimizer.
+struct Regridding {
+  std::string name;
+  int target_hexes;
+  mesh::GridSizing sizing;
+};
+
+//! Step 4's griddings in order: the map's own sizing (hexes of more even size in the model, so
+//! fewer squashed ones in thin parts), then a grid twice as fine (more room in the parts where
+//! the optimizer stayed stuck).
+std::vector<Regridding> regriddings(int target, mesh::GridSizing sizing) {
+  std::vector<Regridding> out;
+  if (sizing != mesh::GridSizing::Map) out.push_back({"map sizing", target, mesh::GridSizing::Map});
+  out.push_back({"finer grid (2x hexes)", 2 * target, sizing});
+  return out;
+}
+
+//! The steps of optimize_stage.h, in the order run() takes them. `why_` is why the current mesh
+//! failed (empty: it passed).
+class OptimizeStage {
+ public:
+  OptimizeStage(const core::PolycubeMap& map, mesh::GridSizing sizing, const ConstructInput& in, const RunOptions& o,
+                const std::filesystem::path& out_dir, RunResult& r, const FileWritten& wrote)
+      : map_(map), sizing_(sizing), in_(in), o_(o), out_dir_(out_dir), r_(r), wrote_(wrote),
+        // Testing only: "optimize-step-N" counts the first N results as failed (RunOptions);
+        // "optimize-crossing-N" as boundaries that cross themselves; "optimize-distance-N" the
+        // first N valid meshes of step 5 as too far from the input (2: the finer one too).
+        injected_(injected_steps(o.inject_failure, "optimize-step-")),
+        injected_crossings_(injected_steps(o.inject_failure, "optimize-crossing-")),
+        injected_far_(injected_steps(o.inject_failure, "optimize-distance-")) {}
+
+  core::HexMesh run(const core::HexMesh& gridded) {
+    hex_ = gridded;
+    why_ = optimize(hex_, o_.optimize_options);
+    retry_with_stiffer_barrier(gridded);
+    pad_instead();
+    grid_again();
+    if (!why_.empty()) throw core::GeometryError("the optimized hex mesh fails the global fold-over check: " + why_);
+    grid_finer_when_far();
+    io::write_mesh(out_dir_ / "hex_optimized.mesh", core::to_mesh_data(hex_));
+    wrote_(out_dir_ / "hex_optimized.mesh");
+    return std::move(hex_);
+  }
+
+ private:
+  bool falls_back() const { return !why_.empty() && o_.optimize_fallbacks; }
+
+  //! Step 1 on `hex` (in place): why it fails the fold-over check, empty when it passes.
+  std::string optimize(core::HexMesh& hex, const optimize::OptimizeOptions& oo) {
+    const optimize::OptimizeResult opt = optimize::optimize_hex_mesh(hex, in_.target, oo);
+    r_.iterations_optimize = opt.untangle.iterations + opt.quality.iterations;
+    return why_failed(optimize::check_foldover(hex));
+  }
+
+  //! Why a checked mesh fails (empty: it passes); sets crossing_ when the boundary crossing
+  //! itself is all that is wrong.
+  std::string why_failed(const optimize::FoldoverReport& fold) {
+    const int k = checks_++;
+    crossing_ = k < injected_crossings_ || (k >= injected_ && fold.inverted_hexes == 0 &&
+                                            fold.nonpositive_scaled_jacobian == 0 &&
+                                            fold.boundary_self_intersections > 0);
+    if (k < injected_) return "injected failure";
+    if (k < injected_crossings_) return "injected boundary crossing";
+    return fold.ok() ? std::string() : fold_summary(fold);
+  }
+
+  void record_failure() {
+    r_.optimize_tried.push_back(
+        fmt::format("{}: {}", r_.optimize_fallback == "none" ? "first grid" : r_.optimize_fallback, why_));
+  }
+
+  //! Step 2. Its cost is one optimization; a failure leaves the first result for padding.
+  void retry_with_stiffer_barrier(const core::HexMesh& gridded) {
+    if (!falls_back() || !crossing_ || o_.optimize_options.boundary_barrier <= 0) return;
+    record_failure();
+    core::logger().warn("optimize: {}; trying a stiffer boundary barrier", why_);
+    r_.optimize_fallback = "stiffer boundary barrier";
+    core::HexMesh first = std::exchange(hex_, gridded);
+    optimize::OptimizeOptions stiffer = o_.optimize_options;
+    stiffer.boundary_barrier *= kBarrierRetry;
+    why_ = optimize(hex_, stiffer);
+    if (!why_.empty()) hex_ = std::move(first);
+  }
+
+  //! Step 3: padding costs one optimization, a new gridding's more.
+  void pad_instead() {
+    for (const padding::PaddingMode mode : {padding::PaddingMode::Selective, padding::PaddingMode::Global}) {
+      if (!falls_back()) return;
+      const std::string name = fmt::format("{} padding", padding::mode_name(mode));
+      record_failure();
+      core::logger().warn("optimize: {}; trying {}", why_, name);
+      r_.optimize_fallback = name;
+      first_grid_ = false;
+      try {
+        std::optional<padding::PadResult> p = pad_and_record(
+            hex_, in_, o_, mode, fmt::format("{} (optimize fallback)", padding::mode_name(mode)), out_dir_, r_, wrote_);
+        if (!p) {
+          why_ = "nothing to pad";
+          continue;
+        }
+        why_ = why_failed(p->check);
+        if (why_.empty()) hex_ = std::move(p->mesh);
+        else discard_padded(out_dir_, r_);
+      } catch (const core::Error& e) {
+        why_ = e.what();
+      }
+    }
+  }
+
+  //! Step 4.
+  void grid_again() {
+    for (const Regridding& g : regriddings(o_.target_hexes, sizing_)) {
+      if (!falls_back()) return;
+      record_failure();
+      core::logger().warn("optimize: {}; gridding again: {}", why_, g.name);
+      hex_ = grid_and_write(map_, g.target_hexes, g.sizing, in_, out_dir_, r_, wrote_);
+      r_.optimize_fallback = g.name;
+      r_.padding = "none";
+      first_grid_ = false;
+      why_ = optimize(hex_, o_.optimize_options);
+    }
+  }
+
+  //! Step 5. The optimizer's drift and fit retries have already pulled the boundary to the
+  //! surface where its hexes allow; a mesh still too far has hexes too coarse for some feature
+  //! (a thin part, a crease between grid planes). Twice the hexes shrink every hex by 2^(1/3).
+  //! When the finer mesh fails or is not closer, the first one stays, and its gridding is
+  //! written again (gridding is deterministic, and cheap beside an optimization).
+  void grid_finer_when_far() {
+    const double bound = o_.optimize_options.hausdorff_bound;
+    if (!o_.optimize_fallbacks || !first_grid_ || bound <= 0) return;
+    const bool injected = far_checks_++ < injected_far_;
+    const double far = injected ? std::numeric_limits<double>::infinity() : distance(hex_);
+    if (far <= bound) return;
+    why_ = injected ? std::string("injected distance")
+                    : fmt::format("{:.2f} % of the diagonal from the input (bound {:.2f} %)", 100 * far, 100 * bound);
+    record_failure();
+    const std::string name = "finer grid for the distance (2x hexes)";
+    core::logger().warn("optimize: {}; gridding again: {}", why_, name);
+    const std::string first_fallback = std::exchange(r_.optimize_fallback, name);
+    const int first_iterations = r_.iterations_optimize;
+    core::HexMesh finer = grid_and_write(map_, 2 * o_.target_hexes, sizing_, in_, out_dir_, r_, wrote_);
+    why_ = optimize(finer, o_.optimize_options);
+    if (why_.empty()) {
+      const bool injected_again = far_checks_++ < injected_far_;
+      const double closer = injected_again ? far : distance(finer);
+      if (closer < far) {
+        hex_ = std::move(finer);
+        return;
+      }
+      why_ = injected_again ? std::string("injected distance")
+                            : fmt::format("{:.2f} % of the diagonal from the input, not closer", 100 * closer);
+    }
+    record_failure();
+    r_.optimize_tried.back() += " (not kept)";
+    core::logger().warn("optimize: {}: {}; keeping the first grid's mesh", name, why_);
+    why_.clear();
+    r_.optimize_fallback = first_fallback;
+    grid_and_write(map_, o_.target_hexes, sizing_, in_, out_dir_, r_, wrote_);
+    r_.iterations_optimize = first_iterations;
+  }
+
+  double distance(const core::HexMesh& hex) const { return quality::hausdorff_distance(hex, in_.target).relative; }
+
+  const core::PolycubeMap& map_;
+  const mesh::GridSizing sizing_;
+  const ConstructInput& in_;
+  const RunOptions& o_;
+  const std::filesystem::path& out_dir_;
+  RunResult& r_;
+  const FileWritten& wrote_;
+  const int injected_, injected_crossings_, injected_far_;
+  core::HexMesh hex_;
+  std::string why_;
+  int checks_ = 0;
+  int far_checks_ = 0;
+  bool crossing_ = false;   //!< the last result failed by its boundary crossing itself only
+  bool first_grid_ = true;  //!< hex_ comes from the first gridding, unpadded
+};
+
+}  // namespace
+
+core::HexMesh optimize_with_fallbacks(const core::HexMesh& gridded, const core::PolycubeMap& map,
+                                      mesh::GridSizing sizing, const ConstructInput& in, const RunOptions& o,
+                                      const std::filesystem::path& out_dir, RunResult& r, const FileWritten& wrote) {
+  return OptimizeStage(map, sizing, in, o, out_dir, r, wrote).run(gridded);
+}
+
+}  // namespace polycube::pipeline
