@@ -161,7 +161,7 @@ std::string optimize_fallback_summary(const pipeline::RunResult& r) {
   if (r.optimize_fallback == "none") return {};
   if (r.optimize_fallback.ends_with("padding"))
     return ", fell back to " + r.optimize_fallback + ": " + padding_summary(r);
-  if (r.optimize_fallback.ends_with("barrier")) return ", optimized again with a " + r.optimize_fallback;
+  if (r.optimize_fallback == "stiffer boundary barrier") return ", optimized again with a " + r.optimize_fallback;
   return ", regridded: " + r.optimize_fallback;
 }
 

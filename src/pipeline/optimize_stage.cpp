@@ -57,7 +57,7 @@ class OptimizeStage {
   core::HexMesh run(const core::HexMesh& gridded) {
     hex_ = gridded;
     why_ = optimize(hex_, o_.optimize_options);
-    retry_with_stiffer_barrier(gridded);
+    retry_with_stiffer_barrier(hex_, gridded, "stiffer boundary barrier");
     pad_instead();
     grid_again();
     if (!why_.empty()) throw core::GeometryError("the optimized hex mesh fails the global fold-over check: " + why_);
@@ -94,17 +94,20 @@ class OptimizeStage {
         fmt::format("{}: {}", r_.optimize_fallback == "none" ? "first grid" : r_.optimize_fallback, why_));
   }
 
-  //! Step 2. Its cost is one optimization; a failure leaves the first result for padding.
-  void retry_with_stiffer_barrier(const core::HexMesh& gridded) {
+  //! Step 2 on `hex`, the optimized `gridded`: when it failed by its boundary crossing itself
+  //! only, `gridded` is optimized again with the stiffer barrier, under the fallback name
+  //! `name`. Its cost is one optimization; when it fails too, `hex` keeps the first result (the
+  //! one the later steps pad).
+  void retry_with_stiffer_barrier(core::HexMesh& hex, const core::HexMesh& gridded, const std::string& name) {
     if (!falls_back() || !crossing_ || o_.optimize_options.boundary_barrier <= 0) return;
     record_failure();
     core::logger().warn("optimize: {}; trying a stiffer boundary barrier", why_);
-    r_.optimize_fallback = "stiffer boundary barrier";
-    core::HexMesh first = std::exchange(hex_, gridded);
+    r_.optimize_fallback = name;
+    core::HexMesh first = std::exchange(hex, gridded);
     optimize::OptimizeOptions stiffer = o_.optimize_options;
     stiffer.boundary_barrier *= kBarrierRetry;
-    why_ = optimize(hex_, stiffer);
-    if (!why_.empty()) hex_ = std::move(first);
+    why_ = optimize(hex, stiffer);
+    if (!why_.empty()) hex = std::move(first);
   }
 
   //! Step 3: padding costs one optimization, a new gridding's more.
@@ -164,8 +167,10 @@ class OptimizeStage {
     core::logger().warn("optimize: {}; gridding again: {}", why_, name);
     const std::string first_fallback = std::exchange(r_.optimize_fallback, name);
     const int first_iterations = r_.iterations_optimize;
-    core::HexMesh finer = grid_and_write(map_, 2 * o_.target_hexes, sizing_, in_, out_dir_, r_, wrote_);
+    const core::HexMesh finer_grid = grid_and_write(map_, 2 * o_.target_hexes, sizing_, in_, out_dir_, r_, wrote_);
+    core::HexMesh finer = finer_grid;
     why_ = optimize(finer, o_.optimize_options);
+    retry_with_stiffer_barrier(finer, finer_grid, name + ", stiffer boundary barrier");
     if (why_.empty()) {
       const bool injected_again = far_checks_++ < injected_far_;
       const double closer = injected_again ? far : distance(finer);

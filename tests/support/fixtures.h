@@ -145,7 +145,7 @@ inline core::TriMesh tri_grid(int n) {
 inline core::TriMesh keel_prism(double rise_degrees) {
   core::TriMesh m;
   for (const double x : {0.0, 4.0})
-    for (const Vec3 p : {Vec3(x, 0, 0), Vec3(x, 1, 2), Vec3(x, -1, 2)}) m.points.push_back(p);
+    for (const Vec3& p : {Vec3(x, 0, 0), Vec3(x, 1, 2), Vec3(x, -1, 2)}) m.points.push_back(p);
   // 0 1 2 at x = 0, 3 4 5 at x = 4; outward.
   m.cells = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3},
              {0, 3, 5}, {0, 5, 2}, {1, 2, 5}, {1, 5, 4}};
