@@ -12,6 +12,9 @@ namespace {
 std::mutex g_mutex;
 std::shared_ptr<ProgressClient> g_client;
 thread_local ProgressTask* t_current = nullptr;  // the innermost task running on this thread
+//! The least share of the outermost bar an inner task runs on: below it the task gets a bar of
+//! its own (less than a percent would not move the bar).
+constexpr double kLeastShare = 0.01;
 }  // namespace
 
 void set_progress_client(std::shared_ptr<ProgressClient> client) {
@@ -38,6 +41,16 @@ ProgressTask::ProgressTask(std::string name, std::int64_t total)
     hi_ = p.inner_runs_ == 0 ? step_hi : lo_ + 0.5 * (step_hi - lo_);
     total_known_ = p.total_known_ && p.inner_runs_ == 0;
     ++p.inner_runs_;
+    if (hi_ - lo_ >= kLeastShare) return;
+    // The step is full (an earlier inner task took all of it): a long task run again after it,
+    // an optimization after a fallback, would leave the bar still for minutes. It gets a bar
+    // of its own instead, named after the outermost task.
+    name_ = root_->name_.ends_with(", again") ? root_->name_ : root_->name_ + ", again";
+    root_ = this;
+    lo_ = 0.0;
+    hi_ = 1.0;
+    total_known_ = true;
+    if (client_) client_->begin(name_);
     return;
   }
   {
@@ -49,7 +62,7 @@ ProgressTask::ProgressTask(std::string name, std::int64_t total)
 
 ProgressTask::~ProgressTask() {
   t_current = parent_;
-  if (!parent_ && client_) client_->end(name_, ok_);
+  if (root_ == this && client_) client_->end(name_, ok_);
 }
 
 double ProgressTask::outer_fraction(double done) const {

@@ -11,7 +11,8 @@
 //! of `run`), moving only forward. An inner task that runs again within the same outer step
 //! (an untangling retried, an attempt after a failed one) gets half of what is left of that
 //! step each time: the bar still moves, but the total is then unknown and clients are told so
-//! (no time estimate).
+//! (no time estimate). When less than a percent of the bar is left for it (an earlier inner
+//! task filled the step), it gets a bar of its own, "<outermost task>, again", from 0 %.
 
 #include <cstdint>
 #include <memory>

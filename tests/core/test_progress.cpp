@@ -100,6 +100,36 @@ TEST(Progress, InnerTasksRunAgainInOneStepKeepMovingWithoutAnEstimate) {
   EXPECT_FALSE(r.known[r.known.size() - 2]);  // the third did not know its share
 }
 
+// An optimization run again after a fallback, in a stage whose one step the first run filled:
+// its progress is shown on a bar of its own, from 0 to 100 %, instead of not at all.
+TEST(Progress, AnInnerTaskAfterOneThatFilledItsStepGetsABarOfItsOwn) {
+  Installed c;
+  {
+    core::ProgressTask stage("optimize", 1);
+    run_inner("untangle", 10, 10);  // 0 .. 100 %
+    {
+      core::ProgressTask again("untangle", 4);
+      run_inner("inner", 2, 2);  // the first of again's steps, on again's bar
+      again.step();
+      again.set(4);
+      again.finish();
+    }
+    stage.step();
+    stage.finish();
+  }
+  const Recorder& r = *c.r;
+  EXPECT_EQ(r.begun, (std::vector<std::string>{"optimize", "optimize, again"}));
+  EXPECT_EQ(r.ended, (std::vector<std::string>{"optimize, again", "optimize"}));
+  std::vector<double> first, second;
+  for (std::size_t i = 0; i < r.task.size(); ++i) (r.task[i] == "optimize" ? first : second).push_back(r.fraction[i]);
+  EXPECT_TRUE(non_decreasing(first));
+  EXPECT_TRUE(non_decreasing(second));
+  ASSERT_FALSE(second.empty());
+  EXPECT_TRUE(told(second, 0.25));  // the nested task filled again's first step
+  EXPECT_DOUBLE_EQ(second.back(), 1.0);
+  EXPECT_DOUBLE_EQ(first.back(), 1.0);
+}
+
 TEST(Progress, AFailedTaskEndsItsBarAndTheNextTaskIsItsOwn) {
   Installed c;
   try {
