@@ -128,6 +128,7 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
       {"quad_domains_before", known(r.quad_domains_before)},
       {"quad_domains_after", known(r.quad_domains_after)},
       {"grid_scale", known(r.grid_scale)},
+      {"grid_sizing_fallback", r.grid_sizing_fallback},
       {"hexes", known(r.hexes)},
       {"quads", known(r.quads)},
       {"gridded", {{"inverted", known(r.inverted_gridded)}, {"msj", known_sj(r.msj_gridded)}, {"asj", known_sj(r.asj_gridded)}}},
@@ -185,8 +186,9 @@ std::string summary_table(const pipeline::RunResult& r) {
                          "(parts/parts.3mf, parts/exploded.vtk)",
                          r.part_boxes, r.parts, r.support_whole_percent, r.support_parts_percent);
     else if (s.name == "hexmesh")
-      what = fmt::format("scale {:.4g}: {} hexes, {} quads; mSJ {} aSJ {}, {} inverted", r.grid_scale, r.hexes,
-                         r.quads, figure(r.msj_gridded), figure(r.asj_gridded), count(r.inverted_gridded));
+      what = fmt::format("scale {:.4g}: {} hexes, {} quads; mSJ {} aSJ {}, {} inverted{}", r.grid_scale, r.hexes,
+                         r.quads, figure(r.msj_gridded), figure(r.asj_gridded), count(r.inverted_gridded),
+                         r.grid_sizing_fallback.empty() ? "" : ", the map's own sizing (one scale did not snap)");
     else if (s.name == "optimize")
       what = fmt::format("{} iterations{}", count(r.iterations_optimize), optimize_fallback_summary(r));
     else if (s.name == "pad")

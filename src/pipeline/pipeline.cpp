@@ -265,7 +265,19 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   auto add_file = [&](const fs::path& p) {
     if (std::find(r.files.begin(), r.files.end(), p.string()) == r.files.end()) wrote(p);
   };
-  run.stage("hexmesh", [&] { hex = grid_and_write(map, o.target_hexes, grid_sizing, in, out_dir, r, add_file); });
+  //    A map whose planes are not on one lattice (--no-simplify) may not snap at one scale:
+  //    then it is gridded with its own sizing, as the unsimplified fallback of simplify is.
+  run.stage("hexmesh", [&] {
+    try {
+      hex = grid_and_write(map, o.target_hexes, grid_sizing, in, out_dir, r, add_file);
+    } catch (const core::GeometryError& e) {
+      if (grid_sizing == mesh::GridSizing::Map) throw;
+      core::logger().warn("hexmesh: {}; gridding with the map's own sizing", e.what());
+      r.grid_sizing_fallback = fmt::format("map sizing ({})", e.what());
+      grid_sizing = mesh::GridSizing::Map;
+      hex = grid_and_write(map, o.target_hexes, grid_sizing, in, out_dir, r, add_file);
+    }
+  });
 
   // 5. optimization (hex mesh untangling and quality improvement), with its fallbacks when the
   //    result fails the fold-over check or stays too far from the input (optimize_stage.h).

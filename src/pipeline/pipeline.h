@@ -127,6 +127,8 @@ struct RunResult {
   int quad_domains_before = -1, quad_domains_after = -1;
   // hexmesh
   double grid_scale = -1;
+  //! Empty, or why the gridding fell back to the map's own sizing ("map sizing (<why>)")
+  std::string grid_sizing_fallback;
   int hexes = -1, quads = -1;
   int inverted_gridded = -1;           //!< hexes inverted in model space right after gridding
   double msj_gridded = -2, asj_gridded = -2;

@@ -589,6 +589,27 @@ TEST(RunCli, AMeshTooFarFromTheInputIsGriddedTwiceAsFine) {
         << name;
 }
 
+// `--no-simplify` meshes the constructed map, whose chart planes are not on one lattice: on the
+// flange sample at 300 hexes no single scale snaps them (corners pushed onto facets), and the
+// hexmesh stage stopped there. It now grids with the map's own sizing, and says so.
+TEST(RunCli, AnUnsimplifiedMapThatDoesNotSnapAtOneScaleIsGriddedWithItsOwnSizing) {
+  const fs::path dir = temp_dir("no_simplify_sizing");
+  ASSERT_EQ(test::run_cli(fmt::format("sample flange -o \"{}\"", (dir / "flange.obj").string())).exit_code, 0);
+  const CliResult r = run(dir / "flange.obj", dir / "out", "--hexes 300 --no-simplify --no-optimize");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = read_report(dir / "out");
+  const std::string why = j["grid_sizing_fallback"];
+  EXPECT_EQ(why.rfind("map sizing (snapping the polycube to the lattice broke it", 0), 0u) << why;
+  EXPECT_NE(r.out.find("the map's own sizing (one scale did not snap)"), std::string::npos) << r.out;
+  const core::HexMesh hex = core::hexes_of(io::read_mesh(dir / "out" / "hex.mesh"));
+  EXPECT_EQ(static_cast<int>(hex.cells.size()), j["hexes"].get<int>());
+  EXPECT_GT(hex.cells.size(), 0u);
+  // A map that snaps keeps one scale and says nothing.
+  const CliResult plain = run(dir / "flange.obj", dir / "plain", "--hexes 300 --no-optimize");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_EQ(read_report(dir / "plain")["grid_sizing_fallback"], "");
+}
+
 TEST(RunCli, GlobalPaddingOnRequestAddsThePadStage) {
   const fs::path dir = temp_dir("padding_global");
   write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
