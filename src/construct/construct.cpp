@@ -149,6 +149,7 @@ AttemptLabeling label_for_attempt(const core::TriMesh& s, const LabelingOptions&
   ropt.energy = lopt;
   ropt.held = held;
   out.repair = repair_labeling(s, lab.labels, ropt);
+  if (out.repair.valid()) out.repair = relabel_backward_charts(s, std::move(out.repair), ropt);
   if (out.repair.valid()) {
     out.estimate = estimate_polycube(s, out.repair.labels);
     core::logger().info("construct: labeling: {} charts, the polycube estimate folds {} triangles ({:.3g}% of the area)",

@@ -162,9 +162,9 @@ class Untangling {
     const mapping::BoundaryFirstResult bf =
         mapping::place_boundary_first(mesh.points, mesh.cells, lm_.boundary, lm_.labels, lm_.charts.vertex_group,
                                       valid, map_options_.untangle, map_options_.ghost_height);
-    core::logger().info("deform: boundary-first placement: {} chains; charts {} ({} facing away, {:.1f} s); volume "
-                        "{} ({} inverted, {:.1f} s){}{}",
-                        bf.chains, bf.chart_step.untangled ? "untangled" : "tangled", bf.charts_inverted,
+    core::logger().info("deform: boundary-first placement: {} chains ({} reversed); charts {} ({} facing away, {:.1f} "
+                        "s); volume {} ({} inverted, {:.1f} s){}{}",
+                        bf.chains, bf.reversed_chains, bf.chart_step.untangled ? "untangled" : "tangled", bf.charts_inverted,
                         bf.chart_step.seconds, bf.volume_step.untangled ? "untangled" : "tangled", bf.tets_inverted,
                         bf.volume_step.seconds, bf.valid ? "" : ": ", bf.reason);
     if (!bf.locked_triangles.empty() && unlocks_ < kMaxUnlocks && unlock(bf.locked_triangles)) {

@@ -10,7 +10,6 @@ namespace polycube::construct {
 
 namespace {
 
-
 //! Label the boundary of a prepared tet mesh (boundary refined, positively oriented) and
 //! repair the labeling; fills everything but the tetrahedralization figures.
 void label_prepared(LabelSurfaceResult& res, const LabelSurfaceOptions& o) {
@@ -30,6 +29,7 @@ void label_prepared(LabelSurfaceResult& res, const LabelSurfaceOptions& o) {
   RepairOptions repair = o.repair;
   repair.energy = labeling;
   RepairResult rep = repair_labeling(s, lab.labels, repair);
+  if (rep.valid()) rep = relabel_backward_charts(s, std::move(rep), repair);  // as construct does
   res.seconds.label_and_repair = clock.seconds();
 
   res.fidelity = labeling_fidelity(s, rep.labels);

@@ -6,6 +6,7 @@
 #include "core/errors.h"
 #include "core/log.h"
 
+#include <Eigen/Geometry>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -316,6 +317,81 @@ RepairResult repair_labeling(const core::TriMesh& surface, const std::vector<int
   core::logger().info("repair: {} defect(s) -> {} after {} move(s)", r.initial_defects,
                       r.check.defects.size(), r.moves);
   return r;
+}
+
+namespace {
+
+//! Area-weighted normal of every chart of `layout` (normals: the labeling's, or empty: the surface's).
+std::vector<core::Vec3> chart_normals(const core::TriMesh& surface, const ChartLayout& layout,
+                                      const std::vector<core::Vec3>& normals) {
+  std::vector<core::Vec3> out(static_cast<std::size_t>(layout.num_charts()), core::Vec3::Zero());
+  for (std::size_t t = 0; t < surface.cells.size(); ++t) {
+    const auto& tri = surface.cells[t];
+    const core::Vec3 area_normal =
+        0.5 * (surface.points[tri[1]] - surface.points[tri[0]]).cross(surface.points[tri[2]] - surface.points[tri[0]]);
+    out[layout.triangle_chart[t]] += normals.empty() ? area_normal : area_normal.norm() * normals[t];
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<int> backward_charts(const core::TriMesh& surface, const ChartLayout& layout,
+                                 const std::vector<int>& labels, const std::vector<core::Vec3>& normals) {
+  PC_REQUIRE(labels.size() == surface.cells.size() && layout.triangle_chart.size() == labels.size() &&
+                 (normals.empty() || normals.size() == labels.size()),
+             "backward_charts: one label, chart and normal per triangle");
+  const std::vector<core::Vec3> n = chart_normals(surface, layout, normals);
+  std::vector<int> out;
+  for (int c = 0; c < layout.num_charts(); ++c)
+    if (!(n[c].dot(label_direction(layout.chart_label[c])) > 0.0)) out.push_back(c);
+  return out;
+}
+
+RepairResult relabel_backward_charts(const core::TriMesh& surface, RepairResult rep, const RepairOptions& options) {
+  const std::vector<core::Vec3>& normals = options.energy.data_normals;
+  std::vector<int> backward = backward_charts(surface, rep.check.layout, rep.labels, normals);
+  const std::size_t before = backward.size();
+  // One chart at a time, largest first: its labels in the order it faces them (those it faces
+  // at all); the first whose repaired labeling is valid with fewer backward charts is kept.
+  bool moved = true;
+  while (!backward.empty() && moved) {
+    moved = false;
+    const ChartLayout& L = rep.check.layout;
+    const std::vector<core::Vec3> n = chart_normals(surface, L, normals);
+    std::stable_sort(backward.begin(), backward.end(),
+                     [&](int a, int b) { return L.chart_area[a] > L.chart_area[b]; });
+    for (const int c : backward) {
+      core::logger().debug("repair: chart {} ({}, {} triangles) faces away: normal sum ({:.4g} {:.4g} {:.4g})", c,
+                           label_name(L.chart_label[c]), L.chart_triangles[c], n[c][0], n[c][1], n[c][2]);
+      std::vector<int> order;
+      for (int l = 0; l < kNumLabels; ++l)
+        if (n[c].dot(label_direction(l)) > 0.0) order.push_back(l);
+      std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+        return n[c].dot(label_direction(a)) > n[c].dot(label_direction(b));
+      });
+      for (const int l : order) {
+        std::vector<int> labels = rep.labels;
+        for (std::size_t t = 0; t < labels.size(); ++t)
+          if (L.triangle_chart[t] == c) labels[t] = l;
+        RepairResult next = repair_labeling(surface, labels, options);
+        if (!next.valid()) continue;
+        std::vector<int> left = backward_charts(surface, next.check.layout, next.labels, normals);
+        if (left.size() >= backward.size()) continue;
+        next.moves += rep.moves;
+        next.initial_defects = rep.initial_defects;
+        rep = std::move(next);
+        backward = std::move(left);
+        moved = true;
+        break;
+      }
+      if (moved) break;  // the layout changed: start again from the charts that still face away
+    }
+  }
+  if (before > 0)
+    core::logger().info("repair: {} chart(s) faced away from their label: {} left after relabelling", before,
+                        backward.size());
+  return rep;
 }
 
 }  // namespace polycube::construct

@@ -53,4 +53,20 @@ struct RepairResult {
 RepairResult repair_labeling(const core::TriMesh& surface, const std::vector<int>& labels,
                              const RepairOptions& options = {});
 
+//! Charts that face away from their label: the area-weighted sum of their triangles' normals
+//! has no positive component along the label's direction (sorted ids of layout's charts). In a
+//! polycube whose corners sit where the model's are, such a chart is a face whose boundary winds
+//! the wrong way round, and no map can place it: the compactness term can pull a small chart on
+//! a strongly curved part to a label its triangles do not face.
+//! \param normals  #T unit normals the labeling read (LabelingOptions::data_normals), or empty:
+//!                 the surface's own
+std::vector<int> backward_charts(const core::TriMesh& surface, const ChartLayout& layout,
+                                 const std::vector<int>& labels, const std::vector<core::Vec3>& normals = {});
+
+//! Give every backward chart the label of the neighbouring chart it faces most, then repair to
+//! validity again (repair_labeling with `options`, whose energy's data normals are the ones
+//! read); repeated while the number of backward charts falls. `rep` comes back unchanged when
+//! it has no backward chart or the relabelled labeling cannot be repaired to validity.
+RepairResult relabel_backward_charts(const core::TriMesh& surface, RepairResult rep, const RepairOptions& options);
+
 }  // namespace polycube::construct

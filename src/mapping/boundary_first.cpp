@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <map>
+#include <optional>
 
 namespace polycube::mapping {
 
@@ -26,11 +27,16 @@ int axes_mask(const std::vector<int>& vertex_group, int v) {
   return m;
 }
 
-//! Step 1: every chain of boundary vertices along a polycube edge (boundary edges between two
-//! charts) onto the segment between its end corners, at the model's arc-length fractions.
-//! Returns the number of chains, or a negative number with `reason` set.
-int place_chains(const std::vector<Vec3>& points, const std::vector<Tri>& tris, const std::vector<int>& labels,
-                 const std::vector<int>& vertex_group, std::vector<Vec3>& P, std::string& reason) {
+//! A chain of boundary vertices along a polycube edge, from corner to corner.
+struct Chain {
+  std::vector<int> vertices;
+  int axis = -1;  //!< the axis the edge runs along
+};
+
+//! Every chain of boundary vertices along a polycube edge (boundary edges between two charts),
+//! or nothing with `reason` set.
+std::optional<std::vector<Chain>> find_chains(const std::vector<Tri>& tris, const std::vector<int>& labels,
+                                              const std::vector<int>& vertex_group, std::string& reason) {
   std::map<std::pair<int, int>, std::array<int, 2>> edge_tris;  // edge -> (label, label)
   for (std::size_t f = 0; f < tris.size(); ++f)
     for (int e = 0; e < 3; ++e) {
@@ -39,72 +45,138 @@ int place_chains(const std::vector<Vec3>& points, const std::vector<Tri>& tris, 
       if (!fresh) it->second[1] = labels[f];
     }
   std::map<int, std::vector<int>> feature;  // vertex -> neighbours along polycube edges
+  std::map<std::pair<int, int>, int> edge_axis;
   for (const auto& [e, l] : edge_tris) {
     if (l[1] < 0) {
       reason = "the boundary is not closed";
-      return -1;
+      return std::nullopt;
     }
     if (l[0] == l[1]) continue;
     if (l[0] / 2 == l[1] / 2) {
       reason = fmt::format("charts {} and {} of one axis share an edge", core::label_name(l[0]), core::label_name(l[1]));
-      return -1;
+      return std::nullopt;
     }
     feature[e.first].push_back(e.second);
     feature[e.second].push_back(e.first);
+    edge_axis[e] = 3 - l[0] / 2 - l[1] / 2;
   }
   std::map<std::pair<int, int>, bool> done;
-  int chains = 0;
+  std::vector<Chain> chains;
   std::size_t walked = 0;
   for (const auto& [corner, nbrs] : feature) {
     if (axes_mask(vertex_group, corner) != 7) continue;
     for (int first : nbrs) {
       if (done[{std::min(corner, first), std::max(corner, first)}]) continue;
-      std::vector<int> chain{corner};
+      Chain chain{{corner}, edge_axis[{std::min(corner, first), std::max(corner, first)}]};
       int prev = corner, cur = first;
       while (true) {
         done[{std::min(prev, cur), std::max(prev, cur)}] = true;
         ++walked;
-        chain.push_back(cur);
+        chain.vertices.push_back(cur);
         if (axes_mask(vertex_group, cur) == 7) break;
         const std::vector<int>& around = feature[cur];
         if (around.size() != 2) {
           reason = fmt::format("vertex {} on a polycube edge has {} polycube-edge neighbours", cur, around.size());
-          return -1;
+          return std::nullopt;
         }
         const int next = around[0] == prev ? around[1] : around[0];
         prev = cur;
         cur = next;
       }
-      ++chains;
-      if (chain.size() < 3) continue;
-      const int mask = axes_mask(vertex_group, chain[1]);
-      int e = -1;
-      for (int d = 0; d < 3; ++d)
-        if (!(mask & (1 << d))) e = d;
-      for (std::size_t k = 1; k + 1 < chain.size(); ++k)
-        if (axes_mask(vertex_group, chain[k]) != mask || e < 0) {
-          reason = fmt::format("vertex {} of a polycube edge is not on exactly two charts' planes", chain[k]);
-          return -1;
+      const int mask = 7 & ~(1 << chain.axis);
+      for (std::size_t k = 1; k + 1 < chain.vertices.size(); ++k)
+        if (axes_mask(vertex_group, chain.vertices[k]) != mask) {
+          reason = fmt::format("vertex {} of a polycube edge is not on exactly two charts' planes", chain.vertices[k]);
+          return std::nullopt;
         }
-      const double pa = P[chain.front()][e], pb = P[chain.back()][e];
-      if (!(std::abs(pb - pa) > 0)) {
-        reason = fmt::format("polycube edge between corners {} and {} has zero length", chain.front(), chain.back());
-        return -1;
-      }
-      std::vector<double> s(chain.size(), 0.0);
-      for (std::size_t k = 1; k < chain.size(); ++k) s[k] = s[k - 1] + (points[chain[k]] - points[chain[k - 1]]).norm();
-      for (std::size_t k = 1; k + 1 < chain.size(); ++k) P[chain[k]][e] = pa + (pb - pa) * (s[k] / s.back());
+      chains.push_back(std::move(chain));
     }
   }
-  if (2 * walked != [&] {
-        std::size_t n = 0;
-        for (const auto& [v, nb] : feature) n += nb.size();
-        return n;
-      }()) {
+  std::size_t half_edges = 0;
+  for (const auto& [v, nb] : feature) half_edges += nb.size();
+  if (2 * walked != half_edges) {
     reason = "a polycube edge loop has no corner";
-    return -1;
+    return std::nullopt;
   }
   return chains;
+}
+
+//! Step 0: a polycube edge that runs the other way than its chain does in the model (the
+//! deformation put one corner's chart plane beyond the other's) makes the faces along it wind
+//! the wrong way round or cross their neighbours, and no 2D or volume map can place them. Each
+//! edge's coordinate along its axis is the difference of its two end corners' chart planes, so
+//! the directions are difference constraints on the planes: x_end − x_start ≥ δ, with the
+//! model's sign. Every reversed edge asks for a quarter of its length in the model; every
+//! other edge keeps at least what it has or that much, whichever is less, so the planes move
+//! only as far as the reversed edges need. Solved by cyclic projection (each violated
+//! constraint moves its two planes apart by halves), which converges when the constraints can
+//! be met; the planes are left as they were when they cannot. Returns the edges reversed.
+int orient_chains(const std::vector<Vec3>& points, const std::vector<Chain>& chains,
+                  const std::vector<int>& vertex_group, std::vector<Vec3>& P) {
+  struct Constraint {
+    int from, to;  // (vertex, axis) slots whose groups hold the two planes
+    double delta;  // x_to − x_from ≥ delta
+  };
+  std::vector<Constraint> rows;
+  int reversed = 0;
+  for (const Chain& c : chains) {
+    const int a = c.vertices.front(), b = c.vertices.back(), e = c.axis;
+    const double model = points[b][e] - points[a][e];
+    if (model == 0.0) continue;
+    const double sign = model > 0 ? 1.0 : -1.0;
+    const double along = sign * (P[b][e] - P[a][e]);
+    const double delta = 0.25 * std::abs(model);
+    reversed += along <= 0.0;
+    const int from = 3 * (sign > 0 ? a : b) + e, to = 3 * (sign > 0 ? b : a) + e;
+    rows.push_back({from, to, along <= 0.0 ? delta : std::min(along, delta)});
+  }
+  if (reversed == 0) return 0;
+  std::map<int, double> plane;  // group -> coordinate
+  for (const Constraint& r : rows)
+    for (const int slot : {r.from, r.to}) plane[vertex_group[slot]] = P[slot / 3][slot % 3];
+  constexpr int kSweeps = 10000;
+  bool met = false;
+  for (int sweep = 0; sweep < kSweeps && !met; ++sweep) {
+    met = true;
+    for (const Constraint& r : rows) {
+      double& x0 = plane[vertex_group[r.from]];
+      double& x1 = plane[vertex_group[r.to]];
+      const double short_by = r.delta - (x1 - x0);
+      if (short_by <= 1e-12 * std::abs(r.delta)) continue;
+      met = false;
+      x0 -= 0.5 * short_by;
+      x1 += 0.5 * short_by;
+    }
+  }
+  core::logger().debug("boundary first: {} of {} polycube edges reversed; their planes {}", reversed, rows.size(),
+                       met ? "moved into the model's order" : "cannot be put in the model's order: left as they were");
+  if (!met) return reversed;
+  for (std::size_t v = 0; v < P.size(); ++v)
+    for (int d = 0; d < 3; ++d) {
+      const auto it = plane.find(vertex_group[3 * v + d]);
+      if (vertex_group[3 * v + d] >= 0 && it != plane.end()) P[v][d] = it->second;
+    }
+  return reversed;
+}
+
+//! Step 1: every chain onto the segment between its end corners, at the model's arc-length
+//! fractions. Returns false with `reason` set on a zero-length edge.
+bool place_chains(const std::vector<Vec3>& points, const std::vector<Chain>& chains, std::vector<Vec3>& P,
+                  std::string& reason) {
+  for (const Chain& c : chains) {
+    const std::vector<int>& chain = c.vertices;
+    const int e = c.axis;
+    if (chain.size() < 3) continue;
+    const double pa = P[chain.front()][e], pb = P[chain.back()][e];
+    if (!(std::abs(pb - pa) > 0)) {
+      reason = fmt::format("polycube edge between corners {} and {} has zero length", chain.front(), chain.back());
+      return false;
+    }
+    std::vector<double> s(chain.size(), 0.0);
+    for (std::size_t k = 1; k < chain.size(); ++k) s[k] = s[k - 1] + (points[chain[k]] - points[chain[k - 1]]).norm();
+    for (std::size_t k = 1; k + 1 < chain.size(); ++k) P[chain[k]][e] = pa + (pb - pa) * (s[k] / s.back());
+  }
+  return true;
 }
 
 solve::UntangleOptions fixed_boundary_options(const solve::UntangleOptions& base) {
@@ -234,8 +306,14 @@ BoundaryFirstResult place_boundary_first(const std::vector<Vec3>& points, const 
              "place_boundary_first: inconsistent sizes");
   PC_REQUIRE(h > 0, "place_boundary_first: the apex height must be positive");
   std::vector<Vec3> Q = P;
-  res.chains = place_chains(points, tris, labels, vertex_group, Q, res.reason);
-  if (res.chains < 0) return res;
+  const std::optional<std::vector<Chain>> chains = find_chains(tris, labels, vertex_group, res.reason);
+  if (!chains) {
+    res.chains = -1;
+    return res;
+  }
+  res.chains = static_cast<int>(chains->size());
+  res.reversed_chains = orient_chains(points, *chains, vertex_group, Q);
+  if (!place_chains(points, *chains, Q, res.reason)) return res;
 
   std::vector<char> on_boundary(static_cast<std::size_t>(nv), 0);
   for (const Tri& t : tris)

@@ -7,6 +7,8 @@
 //! The free-boundary untangling fails at concave corners and where the chain of vertices along a
 //! polycube edge runs backwards (a turning point): the boundary itself is folded there and the
 //! tets cannot unfold it. With the corners where the deformation put them, this repair
+//! 0. moves chart planes apart where a polycube edge runs the other way than its chain does in
+//!    the model (the faces along it would wind the wrong way round);
 //! 1. places every polycube-edge chain on the straight segment between its two corners, at the
 //!    model's arc-length fractions (monotone by construction);
 //! 2. maps each chart inside its now fixed rectilinear polygon by a fixed-boundary 2D elliptic
@@ -29,6 +31,7 @@ namespace polycube::mapping {
 struct BoundaryFirstResult {
   bool valid = false;                //!< every tet positive and every boundary triangle faces its label
   int chains = 0;                    //!< polycube-edge chains placed
+  int reversed_chains = 0;           //!< of those, running the other way than in the model (step 0)
   int charts_inverted = 0;           //!< chart triangles facing away after the 2D step
   int tets_inverted = 0;             //!< tets with det <= 0 after the volume step
   int locked_inverted = 0;           //!< of those, tets or triangles whose every vertex was fixed

@@ -379,6 +379,40 @@ TEST(LabelingCheck, FindsEachKindOfDefect) {
   EXPECT_THROW(construct::check_labeling(cube, std::vector<int>(3, 0)), core::InputError);
 }
 
+// The top of a box labeled -Z is a valid labeling (six charts, four neighbours each, three
+// axes at every corner) whose top chart faces away from its label: no polycube whose corners sit
+// where the box's do has that face the right way round. It is found, and relabelled with the
+// label it faces (+Z), which is the box's own labeling; a labeling without such a chart is left
+// as it is, and the normals the labeling read (LabelingOptions::data_normals) are the ones judged.
+TEST(LabelingRepair, AChartFacingAwayFromItsLabelIsRelabelled) {
+  const core::TriMesh box = test::make_box(1.0, 2.0, 1.5, 3);
+  const std::vector<int> own = normal_labels(box);
+  std::vector<int> labels = own;
+  for (int& l : labels)
+    if (l == 4) l = 5;
+  construct::RepairResult rep = construct::repair_labeling(box, labels);
+  ASSERT_TRUE(rep.valid());
+  ASSERT_EQ(rep.labels, labels);  // valid as it is: nothing for the repair to do
+  const std::vector<int> backward = construct::backward_charts(box, rep.check.layout, rep.labels);
+  ASSERT_EQ(backward.size(), 1u);
+  EXPECT_EQ(rep.check.layout.chart_label[backward[0]], 5);
+  const construct::RepairResult fixed = construct::relabel_backward_charts(box, rep, {});
+  EXPECT_TRUE(fixed.valid());
+  EXPECT_EQ(fixed.labels, own);
+  EXPECT_TRUE(construct::backward_charts(box, fixed.check.layout, fixed.labels).empty());
+
+  const construct::RepairResult good = construct::repair_labeling(box, own);
+  EXPECT_TRUE(construct::backward_charts(box, good.check.layout, good.labels).empty());
+  EXPECT_EQ(construct::relabel_backward_charts(box, good, {}).labels, own);
+
+  // Judged by the normals the labeling read: with every normal turned upside down, the box's
+  // own labeling has its +Z and -Z charts (and all others) facing away.
+  std::vector<core::Vec3> flipped;
+  for (const auto& t : box.cells)
+    flipped.push_back(-(box.points[t[1]] - box.points[t[0]]).cross(box.points[t[2]] - box.points[t[0]]).normalized());
+  EXPECT_EQ(construct::backward_charts(box, good.check.layout, good.labels, flipped).size(), 6u);
+}
+
 TEST(LabelingCheck, CornerJoiningTwoEqualAxesIsADefect) {
   // A box whose +Z face's one quadrant is labelled +X: the corner of that quadrant joins
   // +X(patch), +Z, and the real +X side through a valence-4 or repeated-axis configuration.

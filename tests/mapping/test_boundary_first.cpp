@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <random>
 
 namespace polycube {
@@ -123,18 +124,50 @@ TEST(BoundaryFirst, ScrambledPolycubeGetsStraightEdgesAndNoInvertedTet) {
   }
 }
 
-TEST(BoundaryFirst, MirroredPolycubeIsRefusedAndLeftAsItWas) {
-  // Every chart polygon reversed (the polycube mirrored in x): no chart can face its label, so
-  // the placement must fail and leave P alone.
+TEST(BoundaryFirst, MirroredPolycubeHasItsChartPlanesPutBackInTheModelsOrder) {
+  // The polycube mirrored in x: every polycube edge along x runs the other way than in the
+  // model, so every chart polygon with such an edge winds the wrong way round. Step 0 moves the
+  // x planes back into the model's order; the placement is then valid.
   const NotchedCube s = notched_cube();
   std::vector<Vec3> P = s.mesh.points;
   for (Vec3& p : P) p.x() = -p.x();
-  const std::vector<Vec3> before = P;
   solve::UntangleOptions o;
-  o.max_iterations = 30;
+  o.min_det_target = 1e-6;
   const auto r = mapping::place_boundary_first(s.mesh.points, s.mesh.cells, s.tris, s.labels, s.group, P, o, 0.5);
+  ASSERT_TRUE(r.valid) << r.reason;
+  EXPECT_GT(r.reversed_chains, 0);
+  EXPECT_LT(r.reversed_chains, r.chains);  // the edges along y and z kept their direction
+  for (const auto& c : s.mesh.cells) EXPECT_GT(det(P, c), 0.0);
+  for (std::size_t f = 0; f < s.tris.size(); ++f) EXPECT_TRUE(core::faces_label(P, s.tris[f], s.labels[f]));
+  // The x planes (one per group) in the model's order again, each still exact on its chart.
+  std::map<int, std::pair<double, double>> plane;  // group -> (model x, polycube x)
+  for (int v = 0; v < s.mesh.num_points(); ++v) {
+    const int g = s.group[3 * static_cast<std::size_t>(v)];
+    if (g < 0) continue;
+    const auto [it, fresh] = plane.try_emplace(g, s.mesh.points[v].x(), P[v].x());
+    EXPECT_EQ(it->second.second, P[v].x()) << "vertex " << v << " left its chart's plane";
+  }
+  ASSERT_GE(plane.size(), 3u);
+  for (const auto& [g1, a] : plane)
+    for (const auto& [g2, b] : plane)
+      if (a.first < b.first) {
+        EXPECT_LT(a.second, b.second) << "planes " << g1 << " and " << g2;
+      }
+}
+
+TEST(BoundaryFirst, OppositeChartsSharingAnEdgeAreRefusedAndLeftAsTheyWere) {
+  // One triangle of a +X chart labelled -X: no polycube has such a boundary, so the placement
+  // must fail with the reason and leave P alone.
+  NotchedCube s = notched_cube();
+  std::size_t f = 0;
+  while (s.labels[f] != 0) ++f;
+  s.labels[f] = 1;
+  std::vector<Vec3> P = s.mesh.points;
+  for (Vec3& p : P) p.x() *= 1.3;
+  const std::vector<Vec3> before = P;
+  const auto r = mapping::place_boundary_first(s.mesh.points, s.mesh.cells, s.tris, s.labels, s.group, P, {}, 0.5);
   EXPECT_FALSE(r.valid);
-  EXPECT_FALSE(r.reason.empty());
+  EXPECT_NE(r.reason.find("share an edge"), std::string::npos) << r.reason;
   EXPECT_EQ(P, before);
 }
 
