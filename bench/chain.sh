@@ -52,22 +52,22 @@ out = sys.argv[1]
 def f(v, spec):
     return "-" if v is None or (isinstance(v, (int, float)) and v < -1.5) or v == -1 else format(v, spec)
 rows = []
-print("| model | #tets | #charts | #corners | #D before | #D after | #dom before | #dom after | #H | mSJ | aSJ | Hausdorff | construct s | simplify s | hexmesh s | optimize s | total s | peak MiB | attempt | simplify step | result |")
-print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|")
+print("| model | #tets | #charts | #corners | #D before | #D after | #dom before | #dom after | #H | mSJ | aSJ | Hausdorff | construct s | simplify s | hexmesh s | optimize s | total s | peak MiB | attempt | simplify step | optimize fallback | result |")
+print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---|")
 for rep in sorted(glob.glob(os.path.join(out, "*", "report.json"))):
     j = json.load(open(rep))
     name = os.path.basename(os.path.dirname(rep)).replace("_", "/", 1)
     st = {s["stage"]: s["seconds"] for s in j["stages"]}
     fin = j["final"]
     res = "ok" if j["ok"] else "failed at " + j["failure"]["stage"]
-    print("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |".format(
+    print("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |".format(
         name, f(j["tets"], "d"), f(j["charts"], "d"), f(j["corners"], "d"),
         f(j["hex_domains_before"], "d"), f(j["hex_domains_after"], "d"),
         f(j["quad_domains_before"], "d"), f(j["quad_domains_after"], "d"), f(j["hexes"], "d"),
         f(fin["msj"], ".3f"), f(fin["asj"], ".3f"), f(fin["hausdorff_relative"], ".4f"),
         f(st.get("construct"), ".1f"), f(st.get("simplify"), ".1f"), f(st.get("hexmesh"), ".1f"),
         f(st.get("optimize"), ".1f"), f(j["total_seconds"], ".1f"), f(j["peak_memory_mib"], ".0f"),
-        j.get("construct_attempt") or "-", j.get("simplify_step") or "-", res))
+        j.get("construct_attempt") or "-", j.get("simplify_step") or "-", j.get("optimize_fallback") or "-", res))
 PY
 )
 echo "$table"
@@ -77,7 +77,7 @@ if [[ $write -eq 1 ]]; then
     echo
     echo "Machine: $(nproc) cores, $(awk '/MemTotal/ {printf "%.0f GiB", $2/1048576}' /proc/meminfo), $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); $(uname -sr)."
     echo "Date: $(date -u +%Y-%m-%d). Commit: $(git -C "$root" rev-parse --short HEAD). Options: \`polycube run --hexes $hexes ${limit_opt[*]+${limit_opt[*]}}\` (defaults otherwise)."
-    echo "Fallbacks: the construction attempt kept (the first planned is \"compactness 1\") and the simplification step (\"aligned\" unless it fell back)."
+    echo "Fallbacks: the construction attempt kept (the first planned is \"compactness 1\"), the simplification step (\"aligned\" unless it fell back) and the optimize stage's (\"none\": the first grid passed)."
     echo "Hausdorff: final hex boundary vs the input surface, relative to its bounding-box diagonal. mSJ/aSJ: after optimization."
     echo
     echo "$table"
