@@ -2,6 +2,8 @@
 
 #include "core/errors.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <mutex>
@@ -27,6 +29,7 @@ ProgressTask::ProgressTask(std::string name, std::int64_t total)
   t_current = this;
   if (parent_) {
     root_ = parent_->root_;
+    outermost_ = parent_->outermost_;
     client_ = parent_->client_;
     // The parent's current step; a second inner task in the same step gets half of what the
     // first left, and so on (the parent did not say how many it runs).
@@ -45,7 +48,11 @@ ProgressTask::ProgressTask(std::string name, std::int64_t total)
     // The step is full (an earlier inner task took all of it): a long task run again after it,
     // an optimization after a fallback, would leave the bar still for minutes. It gets a bar
     // of its own instead, named after the outermost task.
-    name_ = root_->name_.ends_with(", again") ? root_->name_ : root_->name_ + ", again";
+    // Each such bar has a name of its own, so a client starts its clock and estimate afresh.
+    ProgressTask& outer = *root_->outermost_;
+    ++outer.again_;
+    name_ = outer.name_ + (outer.again_ == 1 ? std::string(", again") : fmt::format(", again ({})", outer.again_));
+    outermost_ = &outer;
     root_ = this;
     lo_ = 0.0;
     hi_ = 1.0;

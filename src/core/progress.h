@@ -12,7 +12,8 @@
 //! (an untangling retried, an attempt after a failed one) gets half of what is left of that
 //! step each time: the bar still moves, but the total is then unknown and clients are told so
 //! (no time estimate). When less than a percent of the bar is left for it (an earlier inner
-//! task filled the step), it gets a bar of its own, "<outermost task>, again", from 0 %.
+//! task filled the step), it gets a bar of its own, "<outermost task>, again" (then "again (2)",
+//! ...), from 0 %.
 
 #include <cstdint>
 #include <memory>
@@ -64,7 +65,9 @@ class ProgressTask {
   std::int64_t total_;
   std::int64_t done_ = 0;
   ProgressTask* parent_ = nullptr;  //!< the task this one is a part of (same thread)
-  ProgressTask* root_ = this;       //!< the outermost task, which talks to the client
+  ProgressTask* root_ = this;       //!< the task that talks to the client (outermost, or a bar of its own)
+  ProgressTask* outermost_ = this;  //!< the outermost task (its name and count of bars "again")
+  int again_ = 0;                   //!< of the outermost task: inner tasks given a bar of their own
   double lo_ = 0.0, hi_ = 1.0;      //!< this task's range in the outermost task's fraction
   bool total_known_ = true;         //!< false once this task or an outer one guessed its range
   // Of the outermost task only:

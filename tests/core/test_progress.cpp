@@ -130,6 +130,38 @@ TEST(Progress, AnInnerTaskAfterOneThatFilledItsStepGetsABarOfItsOwn) {
   EXPECT_DOUBLE_EQ(first.back(), 1.0);
 }
 
+// Every such bar has a name of its own (a client restarts its clock and estimate for each), and
+// a task nested in one of them stays on it.
+TEST(Progress, EachBarOfItsOwnHasItsOwnName) {
+  Installed c;
+  {
+    core::ProgressTask stage("construct", 1);
+    run_inner("attempt", 4, 4);
+    for (int k = 0; k < 3; ++k) {
+      core::ProgressTask attempt("attempt", 2);
+      run_inner("untangle", 3, 3);
+      attempt.step();
+      attempt.step();
+      attempt.finish();
+    }
+    stage.step();
+    stage.finish();
+  }
+  const Recorder& r = *c.r;
+  EXPECT_EQ(r.begun, (std::vector<std::string>{"construct", "construct, again", "construct, again (2)",
+                                               "construct, again (3)"}));
+  EXPECT_EQ(r.ended, (std::vector<std::string>{"construct, again", "construct, again (2)", "construct, again (3)",
+                                               "construct"}));
+  for (const char* bar : {"construct, again", "construct, again (2)", "construct, again (3)"}) {
+    std::vector<double> f;
+    for (std::size_t i = 0; i < r.task.size(); ++i)
+      if (r.task[i] == bar) f.push_back(r.fraction[i]);
+    ASSERT_FALSE(f.empty()) << bar;
+    EXPECT_TRUE(told(f, 0.5)) << bar;  // the nested untangling filled the attempt's first step
+    EXPECT_DOUBLE_EQ(f.back(), 1.0) << bar;
+  }
+}
+
 TEST(Progress, AFailedTaskEndsItsBarAndTheNextTaskIsItsOwn) {
   Installed c;
   try {
