@@ -253,7 +253,10 @@ void register_run(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "run", "The whole chain on a surface or tet mesh: construct -> simplify -> hexmesh (+ quad mesh) -> optimize "
              "(-> pad), "
-             "with every intermediate result, report.json and a summary table. A failing stage stops the chain: "
+             "with every intermediate result, report.json and a summary table. A stage that cannot reach a valid "
+             "result tries its fallbacks first (other construction attempts, fewer alignments, a stiffer boundary "
+             "barrier, padding, other griddings; a mesh too far from the input is gridded twice as fine), and the "
+             "summary says which one gave the result. A failing stage stops the chain: "
              "exit code 2 when the input file is at fault, 3 when the stage could not reach a valid result (the "
              "reason and the stage on stderr and in report.json; earlier results kept)");
   sub->add_option("input", opts->input, "Closed surface (.obj .off .stl .ply .mesh) or tet mesh (.mesh .vtk .msh)")
