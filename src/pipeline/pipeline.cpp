@@ -1,22 +1,17 @@
 //! The whole chain (see pipeline.h).
 #include "pipeline/pipeline.h"
 
-#include "core/stopwatch.h"
 #include "core/errors.h"
 #include "core/log.h"
 #include "core/progress.h"
-#include "core/topology.h"
-#include "io/mesh_io.h"
-#include "pipeline/parts_output.h"
+#include "core/stopwatch.h"
 #include "io/polycube_map_io.h"
 #include "mesh/grid.h"
-#include "optimize/foldover_check.h"
-#include "optimize/hex_optimize.h"
 #include "pipeline/input.h"
 #include "pipeline/optimize_stage.h"
+#include "pipeline/parts_output.h"
 #include "pipeline/stage_steps.h"
 #include "quality/report.h"
-#include "quality/scaled_jacobian.h"
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
