@@ -337,10 +337,10 @@ std::vector<core::Vec3> chart_normals(const core::TriMesh& surface, const ChartL
 }  // namespace
 
 std::vector<int> backward_charts(const core::TriMesh& surface, const ChartLayout& layout,
-                                 const std::vector<int>& labels, const std::vector<core::Vec3>& normals) {
-  PC_REQUIRE(labels.size() == surface.cells.size() && layout.triangle_chart.size() == labels.size() &&
-                 (normals.empty() || normals.size() == labels.size()),
-             "backward_charts: one label, chart and normal per triangle");
+                                 const std::vector<core::Vec3>& normals) {
+  PC_REQUIRE(layout.triangle_chart.size() == surface.cells.size() &&
+                 (normals.empty() || normals.size() == surface.cells.size()),
+             "backward_charts: one chart and normal per triangle");
   const std::vector<core::Vec3> n = chart_normals(surface, layout, normals);
   std::vector<int> out;
   for (int c = 0; c < layout.num_charts(); ++c)
@@ -350,7 +350,7 @@ std::vector<int> backward_charts(const core::TriMesh& surface, const ChartLayout
 
 RepairResult relabel_backward_charts(const core::TriMesh& surface, RepairResult rep, const RepairOptions& options) {
   const std::vector<core::Vec3>& normals = options.energy.data_normals;
-  std::vector<int> backward = backward_charts(surface, rep.check.layout, rep.labels, normals);
+  std::vector<int> backward = backward_charts(surface, rep.check.layout, normals);
   const std::size_t before = backward.size();
   // One chart at a time, largest first: its labels in the order it faces them (those it faces
   // at all); the first whose repaired labeling is valid with fewer backward charts is kept.
@@ -376,7 +376,7 @@ RepairResult relabel_backward_charts(const core::TriMesh& surface, RepairResult 
           if (L.triangle_chart[t] == c) labels[t] = l;
         RepairResult next = repair_labeling(surface, labels, options);
         if (!next.valid()) continue;
-        std::vector<int> left = backward_charts(surface, next.check.layout, next.labels, normals);
+        std::vector<int> left = backward_charts(surface, next.check.layout, normals);
         if (left.size() >= backward.size()) continue;
         next.moves += rep.moves;
         next.initial_defects = rep.initial_defects;

@@ -61,7 +61,7 @@ RepairResult repair_labeling(const core::TriMesh& surface, const std::vector<int
 //! \param normals  #T unit normals the labeling read (LabelingOptions::data_normals), or empty:
 //!                 the surface's own
 std::vector<int> backward_charts(const core::TriMesh& surface, const ChartLayout& layout,
-                                 const std::vector<int>& labels, const std::vector<core::Vec3>& normals = {});
+                                 const std::vector<core::Vec3>& normals = {});
 
 //! Give every backward chart the label of the neighbouring chart it faces most, then repair to
 //! validity again (repair_labeling with `options`, whose energy's data normals are the ones

@@ -393,16 +393,16 @@ TEST(LabelingRepair, AChartFacingAwayFromItsLabelIsRelabelled) {
   construct::RepairResult rep = construct::repair_labeling(box, labels);
   ASSERT_TRUE(rep.valid());
   ASSERT_EQ(rep.labels, labels);  // valid as it is: nothing for the repair to do
-  const std::vector<int> backward = construct::backward_charts(box, rep.check.layout, rep.labels);
+  const std::vector<int> backward = construct::backward_charts(box, rep.check.layout);
   ASSERT_EQ(backward.size(), 1u);
   EXPECT_EQ(rep.check.layout.chart_label[backward[0]], 5);
   const construct::RepairResult fixed = construct::relabel_backward_charts(box, rep, {});
   EXPECT_TRUE(fixed.valid());
   EXPECT_EQ(fixed.labels, own);
-  EXPECT_TRUE(construct::backward_charts(box, fixed.check.layout, fixed.labels).empty());
+  EXPECT_TRUE(construct::backward_charts(box, fixed.check.layout).empty());
 
   const construct::RepairResult good = construct::repair_labeling(box, own);
-  EXPECT_TRUE(construct::backward_charts(box, good.check.layout, good.labels).empty());
+  EXPECT_TRUE(construct::backward_charts(box, good.check.layout).empty());
   EXPECT_EQ(construct::relabel_backward_charts(box, good, {}).labels, own);
 
   // Judged by the normals the labeling read: with every normal turned upside down, the box's
@@ -410,7 +410,7 @@ TEST(LabelingRepair, AChartFacingAwayFromItsLabelIsRelabelled) {
   std::vector<core::Vec3> flipped;
   for (const auto& t : box.cells)
     flipped.push_back(-(box.points[t[1]] - box.points[t[0]]).cross(box.points[t[2]] - box.points[t[0]]).normalized());
-  EXPECT_EQ(construct::backward_charts(box, good.check.layout, good.labels, flipped).size(), 6u);
+  EXPECT_EQ(construct::backward_charts(box, good.check.layout, flipped).size(), 6u);
 }
 
 TEST(LabelingCheck, CornerJoiningTwoEqualAxesIsADefect) {

@@ -526,6 +526,15 @@ TEST(RunCli, OptimizeFallsBackToPaddingThenNewGriddingsAndTheReportNamesThem) {
   EXPECT_EQ(read_report(dir / "out4")["optimize_tried"].size(), 4u);
 }
 
+//! hex.mesh is the gridding that was optimized: the final mesh has its hexes, as many as the
+//! report says.
+void expect_final_mesh_is_the_gridding(const fs::path& out, const nlohmann::json& j) {
+  const core::HexMesh gridded = core::hexes_of(io::read_mesh(out / "hex.mesh"));
+  const core::HexMesh final_mesh = core::hexes_of(io::read_mesh(out / "hex_optimized.mesh"));
+  EXPECT_EQ(gridded.cells, final_mesh.cells);
+  EXPECT_EQ(static_cast<int>(final_mesh.cells.size()), j["hexes"].get<int>());
+}
+
 // A mesh whose boundary crosses itself (and nothing else wrong) is first optimized again from the
 // same grid with a stiffer boundary barrier, before any padding or new gridding: the report names
 // that fallback, and the final mesh has the gridded hexes, no more.
@@ -539,10 +548,7 @@ TEST(RunCli, ABoundaryThatCrossesItselfIsOptimizedAgainWithAStifferBarrierFirst)
   ASSERT_EQ(j["optimize_tried"].size(), 1u);
   EXPECT_EQ(j["optimize_tried"][0], "first grid: injected boundary crossing");
   EXPECT_EQ(j["final"]["inverted"], 0);
-  const core::HexMesh gridded = core::hexes_of(io::read_mesh(dir / "out" / "hex.mesh"));
-  const core::HexMesh final_mesh = core::hexes_of(io::read_mesh(dir / "out" / "hex_optimized.mesh"));
-  EXPECT_EQ(gridded.cells, final_mesh.cells);
-  EXPECT_EQ(static_cast<int>(final_mesh.cells.size()), j["hexes"].get<int>());
+  expect_final_mesh_is_the_gridding(dir / "out", j);
   // A failure that is not a crossing skips this retry (the padding fallbacks come first there:
   // OptimizeFallsBackToPaddingThenNewGriddingsAndTheReportNamesThem).
 }
@@ -568,10 +574,7 @@ TEST(RunCli, AMeshTooFarFromTheInputIsGriddedTwiceAsFine) {
   EXPECT_EQ(f["optimize_tried"][0], "first grid: injected distance");
   EXPECT_NE(finer.out.find("regridded: finer grid for the distance (2x hexes)"), std::string::npos) << finer.out;
   EXPECT_GT(f["hexes"].get<int>(), p["hexes"].get<int>());
-  const core::HexMesh gridded = core::hexes_of(io::read_mesh(dir / "finer" / "hex.mesh"));
-  const core::HexMesh final_mesh = core::hexes_of(io::read_mesh(dir / "finer" / "hex_optimized.mesh"));
-  EXPECT_EQ(gridded.cells, final_mesh.cells);
-  EXPECT_EQ(static_cast<int>(final_mesh.cells.size()), f["hexes"].get<int>());
+  expect_final_mesh_is_the_gridding(dir / "finer", f);
   EXPECT_EQ(f["final"]["inverted"], 0);
 
   const CliResult kept = run(dir / "box.obj", dir / "kept", "--hexes 200 --padding none --inject-failure optimize-distance-2");
