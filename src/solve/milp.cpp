@@ -16,6 +16,7 @@
 #include <ClpSimplex.hpp>
 #include <CoinPackedMatrix.hpp>
 #include <OsiClpSolverInterface.hpp>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -375,6 +376,8 @@ MilpResult solve_program(const LinearProgram& p, const MilpOptions& options) {
   if (!first.empty()) model.setBestSolution(first.data(), n, p.objective(first), false);
   const double relaxation_bound = si.isProvenOptimal() ? si.getObjValue() : bound_over_the_box(p);
   model.branchAndBound();
+  core::logger().debug("milp: branch and cut: {} nodes, {:.1f} s, {}", model.getNodeCount(), clock.seconds(),
+                       model.bestSolution() ? fmt::format("best {:.6f}", model.getObjValue()) : "no point of its own");
   // Past the deadline the LPs inside branch and cut were cut short, and CBC then takes a stopped
   // LP for an infeasible node: neither its verdict nor its bound is a proof; the relaxation's is.
   if (options.time_limit > 0 && clock.seconds() >= options.time_limit)
