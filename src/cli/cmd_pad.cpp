@@ -240,7 +240,10 @@ void register_pad(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--time-limit", opts->selection.time_limit,
                   "Selective: seconds for the binary problem; past them the best facet set found is used and the "
-                  "report says it is not proven optimal, with the gap (0: no limit)")
+                  "report says it is not proven optimal, with the gap. Under a limit, meshes of more than about "
+                  "2,000 hexes get no branch and cut where the LP relaxation is fractional (it cannot progress within "
+                  "minutes there): the best of the start and the rounded relaxation is used, the same on any machine "
+                  "(0: no limit, branch and cut at any size)")
       ->check(cli::non_negative())
       ->capture_default_str();
   sub->add_option("--offset", opts->pad.sheet.offset,

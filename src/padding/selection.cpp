@@ -313,6 +313,13 @@ constexpr double kRepairLargest = 0.05;
 //! decides when it stops, so the repair's point does not depend on the machine (the time left
 //! only caps it).
 constexpr int kRepairNodes = 500;
+//! Largest program branch and cut searches under a time limit. On the padding problems of
+//! 20,000-hex meshes (about 190,000 variables) with a fractional relaxation, CBC's root node
+//! outlasts a minute, and without strong branching it processes a few nodes in minutes, never
+//! improving on the start; on 2,000-hex meshes (about 21,000 variables) it does not close the gap
+//! within a minute either (bench/RESULTS.md). The best start is then the answer, the same on
+//! any machine.
+constexpr int kBranchAndCutLargest = 20000;
 //! A relaxation's value this far from 0 and 1 is fractional.
 constexpr double kFractional = 1e-6;
 
@@ -395,6 +402,7 @@ Selection select_facets_to_pad(const core::HexMesh& mesh, const std::vector<std:
   solve::MilpOptions mo;
   mo.time_limit = options.time_limit;
   mo.start = surface_start(m, tp);
+  mo.branch_and_cut_max_variables = kBranchAndCutLargest;
   const core::Stopwatch solve_clock;
   mo.round = [&](const std::vector<double>& relaxation) {
     const double left = options.time_limit > 0 ? std::max(options.time_limit - solve_clock.seconds(), 1e-3) : 0.0;

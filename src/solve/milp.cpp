@@ -138,8 +138,9 @@ double bound_over_the_box(const LinearProgram& p) {
   return b;
 }
 
-//! The result when the time limit ran out: `best` (branch and cut's incumbent, or null) or else
-//! the start when it is feasible (else no point), not proven optimal, with `bound`.
+//! The result when the time limit ran out or branch and cut is not run: `best` (its incumbent,
+//! or null) or else the start when it is feasible (else no point), not proven optimal, with
+//! `bound`.
 MilpResult stopped_at_the_limit(const LinearProgram& p, const MilpOptions& options, const double* best,
                                 double bound, std::string solver) {
   MilpResult res;
@@ -360,6 +361,12 @@ MilpResult solve_program(const LinearProgram& p, const MilpOptions& options) {
     res.x = first;
     return res;
   }
+  if (options.time_limit > 0 && options.branch_and_cut_max_variables > 0 && n > options.branch_and_cut_max_variables)
+    return stopped_at_the_limit(p, options, first.empty() ? nullptr : first.data(),
+                                si.isProvenOptimal() ? si.getObjValue() : bound_over_the_box(p),
+                                fmt::format("CLP dual simplex (LP relaxation; no branch and cut: {} variables, more than "
+                                            "it can search within the time limit)",
+                                            n));
   res.solver = "CBC branch and cut";
   for (int j = 0; j < n; ++j)
     if (p.integer[j]) si.setInteger(j);

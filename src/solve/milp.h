@@ -62,6 +62,12 @@ struct MilpOptions {
   //! of. On programs of a few thousand rows they find points and close gaps that plain branching
   //! does not in thousands of nodes; on 10^5 rows each round of them costs minutes.
   bool cuts_and_heuristics = false;
+  //! With a time limit, branch and cut runs only on programs of at most this many variables (0:
+  //! any size). A larger program whose relaxation is fractional returns the cheaper of `start`
+  //! and `round`'s point, status Stopped with the relaxation's bound: what it returns then does
+  //! not depend on the machine's speed. On programs of 10^5 variables CBC's root node alone
+  //! (strong branching on LPs that take tens of seconds each) outlasts a minute.
+  int branch_and_cut_max_variables = 0;
   //! A feasible solution to start branch and cut from (#x values; empty: none). Checked: an
   //! infeasible start is ignored. With a time limit, the result is never worse than the start.
   std::vector<double> start;

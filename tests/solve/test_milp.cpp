@@ -425,6 +425,28 @@ TEST(Milp, ANodeLimitStopsTheSameWayEachTimeAndTheToolkitKeepsOptima) {
   expect_optimum(p, solve_program(p, with), {0.0, 1.0, 1.0}, -220.0);
 }
 
+TEST(Milp, AProgramLargerThanBranchAndCutsCapReturnsItsBestStartWithTheRelaxationsBound) {
+  // The knapsack's relaxation is fractional (240 against 220): with a time limit and a cap below
+  // its 3 variables, no search runs; the start (nothing packed) comes back, not proven optimal,
+  // with the relaxation's bound. At the cap or without a limit the optimum is found as before.
+  const LinearProgram p = knapsack(true);
+  MilpOptions o;
+  o.time_limit = 60;
+  o.start = {0.0, 0.0, 0.0};
+  o.branch_and_cut_max_variables = 2;
+  const MilpResult capped = solve_program(p, o);
+  EXPECT_EQ(capped.status, MilpStatus::Stopped) << status_name(capped.status);
+  EXPECT_EQ(capped.x, o.start);
+  EXPECT_DOUBLE_EQ(capped.objective, 0.0);
+  EXPECT_NEAR(capped.bound, -240.0, 1e-6);
+  EXPECT_NE(capped.solver.find("no branch and cut"), std::string::npos) << capped.solver;
+  o.branch_and_cut_max_variables = 3;
+  expect_optimum(p, solve_program(p, o), {0.0, 1.0, 1.0}, -220.0);
+  o.branch_and_cut_max_variables = 2;
+  o.time_limit = 0;
+  expect_optimum(p, solve_program(p, o), {0.0, 1.0, 1.0}, -220.0);
+}
+
 TEST(Milp, SatisfiedByChecksBoundsRowsAndIntegrality) {
   const LinearProgram p = knapsack(true);
   EXPECT_TRUE(p.satisfied_by({0.0, 1.0, 1.0}));
