@@ -101,14 +101,19 @@ std::optional<std::vector<Chain>> find_chains(const std::vector<Tri>& tris, cons
   return chains;
 }
 
+//! A polycube edge shorter than this fraction of its length in the model is lengthened by step 0.
+constexpr double kShortEdge = 0.1;
+
 //! Step 0: a polycube edge that runs the other way than its chain does in the model (the
 //! deformation put one corner's chart plane beyond the other's) makes the faces along it wind
 //! the wrong way round or cross their neighbours, and no 2D or volume map can place them. Each
 //! edge's coordinate along its axis is the difference of its two end corners' chart planes, so
 //! the directions are difference constraints on the planes: x_end − x_start ≥ δ, with the
-//! model's sign. Every reversed edge asks for a quarter of its length in the model; every
-//! other edge keeps at least what it has or that much, whichever is less, so the planes move
-//! only as far as the reversed edges need. Solved by cyclic projection (each violated
+//! model's sign. Every reversed edge asks for a quarter of its length in the model, and so does
+//! an edge squeezed below kShortEdge of it: the faces along such an edge are slivers, and the
+//! tets between its two close chart planes end up flat (inverted by rounding) in the volume
+//! step. Every other edge keeps at least what it has or a quarter, whichever is less, so the
+//! planes move only as far as those edges need. Solved by cyclic projection (each violated
 //! constraint moves its two planes apart by halves), which converges when the constraints can
 //! be met; the planes are left as they were when they cannot. Returns the edges reversed.
 int orient_chains(const std::vector<Vec3>& points, const std::vector<Chain>& chains,
@@ -118,7 +123,7 @@ int orient_chains(const std::vector<Vec3>& points, const std::vector<Chain>& cha
     double delta;  // x_to − x_from ≥ delta
   };
   std::vector<Constraint> rows;
-  int reversed = 0;
+  int reversed = 0, squeezed = 0;
   for (const Chain& c : chains) {
     const int a = c.vertices.front(), b = c.vertices.back(), e = c.axis;
     const double model = points[b][e] - points[a][e];
@@ -127,10 +132,12 @@ int orient_chains(const std::vector<Vec3>& points, const std::vector<Chain>& cha
     const double along = sign * (P[b][e] - P[a][e]);
     const double delta = 0.25 * std::abs(model);
     reversed += along <= 0.0;
+    const bool too_short = along < kShortEdge * std::abs(model);
+    squeezed += too_short && along > 0.0;
     const int from = 3 * (sign > 0 ? a : b) + e, to = 3 * (sign > 0 ? b : a) + e;
-    rows.push_back({from, to, along <= 0.0 ? delta : std::min(along, delta)});
+    rows.push_back({from, to, too_short ? delta : std::min(along, delta)});
   }
-  if (reversed == 0) return 0;
+  if (reversed == 0 && squeezed == 0) return 0;
   std::map<int, double> plane;  // group -> coordinate
   for (const Constraint& r : rows)
     for (const int slot : {r.from, r.to}) plane[vertex_group[slot]] = P[slot / 3][slot % 3];
@@ -148,7 +155,8 @@ int orient_chains(const std::vector<Vec3>& points, const std::vector<Chain>& cha
       x1 += 0.5 * short_by;
     }
   }
-  core::logger().debug("boundary first: {} of {} polycube edges reversed; their planes {}", reversed, rows.size(),
+  core::logger().debug("boundary first: {} of {} polycube edges reversed, {} squeezed; their planes {}", reversed,
+                       rows.size(), squeezed,
                        met ? "moved into the model's order" : "cannot be put in the model's order: left as they were");
   if (!met) return reversed;
   for (std::size_t v = 0; v < P.size(); ++v)

@@ -155,6 +155,28 @@ TEST(BoundaryFirst, MirroredPolycubeHasItsChartPlanesPutBackInTheModelsOrder) {
       }
 }
 
+TEST(BoundaryFirst, SqueezedPolycubeEdgesAreLengthenedToAQuarterOfTheModels) {
+  // The polycube squeezed to 2 % along x: no edge is reversed, but every edge along x is a
+  // sliver of its model length, and the tets between the close x planes would be nearly flat.
+  // Step 0 moves the x planes apart until each such edge has a quarter of its model length.
+  const NotchedCube s = notched_cube();
+  std::vector<Vec3> P = s.mesh.points;
+  for (Vec3& p : P) p.x() *= 0.02;
+  solve::UntangleOptions o;
+  o.min_det_target = 1e-6;
+  const auto r = mapping::place_boundary_first(s.mesh.points, s.mesh.cells, s.tris, s.labels, s.group, P, o, 0.5);
+  ASSERT_TRUE(r.valid) << r.reason;
+  EXPECT_EQ(r.reversed_chains, 0);
+  for (const auto& c : s.mesh.cells) EXPECT_GT(det(P, c), 0.0);
+  std::map<double, double> plane;  // model x -> polycube x, for the x chart planes
+  for (int v = 0; v < s.mesh.num_points(); ++v)
+    if (s.group[3 * static_cast<std::size_t>(v)] >= 0) plane[s.mesh.points[v].x()] = P[v].x();
+  ASSERT_EQ(plane.size(), 3u);  // x = 0, the notch's floor at 4, and 8
+  for (auto a = plane.begin(), b = std::next(a); b != plane.end(); ++a, ++b)
+    EXPECT_GE(b->second - a->second, 0.25 * (b->first - a->first) * (1 - 1e-9))
+        << "planes at model x " << a->first << " and " << b->first;
+}
+
 TEST(BoundaryFirst, OppositeChartsSharingAnEdgeAreRefusedAndLeftAsTheyWere) {
   // One triangle of a +X chart labelled -X: no polycube has such a boundary, so the placement
   // must fail with the reason and leave P alone.
