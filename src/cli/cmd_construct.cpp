@@ -90,6 +90,7 @@ void run_construct(const ConstructCliOptions& o) {
       {"refine", {{"split_edges", r.refine.split_edges}, {"split_tets", r.refine.split_tets}}},
       {"split_boundary_triangles", r.split_triangles},
       {"split_boundary_edges", r.split_edges},
+      {"split_interior_faces", r.split_faces},
       {"refined_edges", r.refined_edges},
       {"boundary_first", r.boundary_first},
       {"boundary_triangles", r.boundary.size()},

@@ -430,6 +430,7 @@ void report_attempt(const AttemptResult& kept, ConstructResult& res) {
   if (kept.predeform) res.predeform = *kept.predeform;
   res.split_triangles = d.split_triangles;
   res.split_edges = d.split_edges;
+  res.split_faces = d.split_faces;
   res.refined_edges = d.refined_edges;
   res.boundary_first = d.boundary_first;
   res.inverted_after_linear = d.inverted_after_linear;

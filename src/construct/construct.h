@@ -123,6 +123,7 @@ struct ConstructResult {
   RefineStats refine;               //!< boundary refinement work
   int split_triangles = 0;          //!< boundary triangles split by the deformation
   int split_edges = 0;              //!< boundary edges split by the deformation
+  int split_faces = 0;              //!< interior faces split around vertices that see one chart plane only
   int refined_edges = 0;            //!< edges split by the local refinement of the untangling
   bool boundary_first = false;      //!< the map came from the boundary-first placement (boundary_first.h)
   int charts = 0;                   //!< charts of the final labeling

@@ -27,14 +27,27 @@ using mapping::LabeledTetMesh;
 //! flat triangles), then widen thin corner fans. `start` (optional) is refined alongside.
 void make_realizable(LabeledTetMesh& lm, int min_fan, std::vector<Vec3>* start, DeformResult& res) {
   constexpr int kMaxRounds = 12;
+  bool unlock = true;
   for (int round = 0;; ++round) {
     mapping::update_charts(lm);
     const std::vector<std::array<int, 2>> chords = mapping::chord_edges(lm);
     const std::vector<int> flat = chords.empty() ? mapping::forced_flat_triangles(lm) : std::vector<int>{};
-    const std::vector<std::array<int, 2>> fans =
-        chords.empty() && flat.empty() ? mapping::thin_fan_edges(lm, min_fan) : std::vector<std::array<int, 2>>{};
-    if (chords.empty() && flat.empty() && (fans.empty() || round >= kMaxRounds)) return;
-    if (!fans.empty()) {
+    const std::vector<mapping::LockedVertex> locked = chords.empty() && flat.empty() && unlock && round < kMaxRounds
+                                                          ? mapping::locked_interior_vertices(lm)
+                                                          : std::vector<mapping::LockedVertex>{};
+    const std::vector<std::array<int, 2>> fans = chords.empty() && flat.empty() && locked.empty()
+                                                     ? mapping::thin_fan_edges(lm, min_fan)
+                                                     : std::vector<std::array<int, 2>>{};
+    if (chords.empty() && flat.empty() && locked.empty() && (fans.empty() || round >= kMaxRounds)) return;
+    if (!locked.empty()) {
+      std::vector<char> touched(lm.mesh.cells.size(), 0);
+      int split = 0;
+      for (const auto& l : locked) split += mapping::split_interior_face(lm, l.face, touched, start) ? 1 : 0;
+      core::logger().info("deform: {} interior link faces of vertices that see only one chart plane: {} split",
+                          locked.size(), split);
+      res.split_faces += split;
+      unlock = split > 0;
+    } else if (!fans.empty()) {
       res.split_fan_edges += mapping::split_edges(lm, fans, start);
     } else if (round >= kMaxRounds) {
       std::vector<int> where;

@@ -12,7 +12,9 @@
 //!    in-plane axis (a chord joining two points of one polycube edge: the chart would have to
 //!    fold over that edge) are split at their midpoint, and boundary triangles whose three
 //!    vertices are tied that way are split at their centroid (the tets around are split too;
-//!    this keeps the mesh conforming and positively oriented); then, at each polycube corner,
+//!    this keeps the mesh conforming and positively oriented); then the interior faces around
+//!    an interior vertex whose neighbours all lie on one chart plane are split at their
+//!    centroid (the plane would flatten every tet around it); then, at each polycube corner,
 //!    the edges opposite the corner in a chart's fan are split until the fan has
 //!    DeformOptions::min_fan triangles (a chart may have to open to 270° at a corner);
 //! 3. the first polycube (mapping/first_polycube.h): as-rigid-as-possible least squares, or the
@@ -86,6 +88,7 @@ struct DeformResult {
   int num_charts = 0;                       //!< charts (edge-connected, one label)
   int num_chart_variables = 0;              //!< chart coordinates after merging touching charts
   int split_triangles = 0;                  //!< boundary triangles split by step 2
+  int split_faces = 0;                      //!< interior faces split around locked vertices (step 2)
   int split_edges = 0;                      //!< boundary edges split by step 2
   int split_fan_edges = 0;                  //!< boundary edges split to widen corner fans
   int refined_edges = 0;                    //!< edges split by the local refinement of step 4

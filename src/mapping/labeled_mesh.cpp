@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <set>
 #include <utility>
 
 namespace polycube::mapping {
@@ -283,6 +284,82 @@ bool split_boundary_triangle(LabeledTetMesh& lm, int f, std::vector<char>& touch
   lm.boundary.push_back({tri[0], tri[1], m});
   lm.labels.push_back(label);
   lm.labels.push_back(label);
+  return true;
+}
+
+std::vector<LockedVertex> locked_interior_vertices(const LabeledTetMesh& lm) {
+  const core::TetMesh& mesh = lm.mesh;
+  const std::vector<int>& group = lm.charts.vertex_group;
+  const auto nv = static_cast<std::size_t>(mesh.num_points());
+  std::vector<char> on_boundary(nv, 0);
+  for (const Tri& t : lm.boundary)
+    for (int v : t) on_boundary[v] = 1;
+  std::set<std::array<int, 3>> boundary_faces;
+  for (Tri t : lm.boundary) {
+    std::sort(t.begin(), t.end());
+    boundary_faces.insert(t);
+  }
+  std::vector<std::array<int, 3>> shared(nv, {-1, -1, -1});
+  for (const auto& c : mesh.cells)
+    for (int v : c) {
+      if (on_boundary[v]) continue;
+      for (int w : c) {
+        if (w == v) continue;
+        for (int a = 0; a < 3; ++a) {
+          const int g = group[3 * static_cast<std::size_t>(w) + a];
+          int& s = shared[v][a];
+          if (g < 0) s = -2;
+          else if (s == -1) s = g;
+          else if (s != g) s = -2;
+        }
+      }
+    }
+  std::vector<LockedVertex> out;
+  for (const auto& c : mesh.cells)
+    for (int k = 0; k < 4; ++k) {
+      const int v = c[k];
+      if (on_boundary[v] || std::none_of(shared[v].begin(), shared[v].end(), [](int g) { return g >= 0; })) continue;
+      std::array<int, 3> face{};
+      for (int i = 0, j = 0; i < 4; ++i)
+        if (i != k) face[j++] = c[i];
+      std::sort(face.begin(), face.end());
+      if (!boundary_faces.count(face)) out.push_back({v, face});
+    }
+  return out;
+}
+
+bool split_interior_face(LabeledTetMesh& lm, std::array<int, 3> face, std::vector<char>& touched,
+                         std::vector<Vec3>* other) {
+  core::TetMesh& mesh = lm.mesh;
+  std::sort(face.begin(), face.end());
+  std::vector<int> cells;
+  for (int t = 0; t < mesh.num_cells(); ++t) {
+    int hits = 0;
+    for (int v : mesh.cells[t]) hits += std::binary_search(face.begin(), face.end(), v) ? 1 : 0;
+    if (hits == 3) cells.push_back(t);
+  }
+  if (cells.size() != 2 || touched[cells[0]] || touched[cells[1]]) return false;
+  const int m = mesh.num_points();
+  mesh.points.push_back((mesh.points[face[0]] + mesh.points[face[1]] + mesh.points[face[2]]) / 3.0);
+  if (other) other->push_back(((*other)[face[0]] + (*other)[face[1]] + (*other)[face[2]]) / 3.0);
+  for (int t : cells) {
+    const core::Tet old = mesh.cells[t];
+    bool first = true;
+    for (int fv : face) {
+      core::Tet nt = old;
+      for (int& v : nt)
+        if (v == fv) v = m;
+      if (first) {
+        mesh.cells[t] = nt;
+        first = false;
+      } else {
+        mesh.cells.push_back(nt);
+        if (!mesh.labels.empty()) mesh.labels.push_back(mesh.labels[t]);
+      }
+    }
+  }
+  touched.resize(mesh.cells.size(), 1);
+  for (int t : cells) touched[t] = 1;
   return true;
 }
 

@@ -70,6 +70,24 @@ std::vector<std::array<int, 2>> thin_fan_edges(const LabeledTetMesh& lm, int min
 int split_edges(LabeledTetMesh& lm, const std::vector<std::array<int, 2>>& edges,
                 std::vector<core::Vec3>* other = nullptr);
 
+//! An interior vertex whose neighbours all lie on one chart plane (the same group on one axis),
+//! with one face of its link that is not on the boundary (locked_interior_vertices() gives one
+//! such pair per face). The chart's plane takes every corner of the vertex's star, so no
+//! position of the vertex makes its tets positive: the centroid that the refinement after
+//! TetGen puts into a tet with several boundary facets is one when those facets lie in one
+//! chart. Splitting the link's interior faces gives it a neighbour that also sees the far side.
+struct LockedVertex {
+  int vertex = -1;
+  std::array<int, 3> face{};
+};
+std::vector<LockedVertex> locked_interior_vertices(const LabeledTetMesh& lm);
+
+//! Split the interior face `face` at its centroid: each of its two tets becomes three, unless
+//! one is marked in `touched` (#T, grows with the new tets). `other` (optional, #V) gets the
+//! centroid too.
+bool split_interior_face(LabeledTetMesh& lm, std::array<int, 3> face, std::vector<char>& touched,
+                         std::vector<core::Vec3>* other = nullptr);
+
 //! Split boundary triangle f and its tet at the triangle's centroid, unless the tet is marked
 //! in `touched` (#T, grows with the new tets). Call refresh_boundary() afterwards.
 bool split_boundary_triangle(LabeledTetMesh& lm, int f, std::vector<char>& touched,

@@ -103,6 +103,51 @@ TEST(LabeledMesh, LabelsFollowTheirTrianglesAndChartsAreTheBoxFaces) {
   EXPECT_GT(free_vertices, 0);
 }
 
+TEST(LabeledMesh, AVertexThatSeesOnlyOneChartPlaneGetsAFaceSplitTowardsTheInside) {
+  // A bipyramid: a cap tet (a, b, c, e) over a tet (a, b, c, d), the cap split at its centroid
+  // v as the refinement after TetGen does. The cap's three outer faces form one +Z chart, so a,
+  // b, c and e share its plane and v, whose neighbours are those four, sees nothing else: every
+  // position of v leaves its tets flat. Splitting the inner face (a, b, c) gives v a neighbour
+  // that also sees d, off the plane.
+  core::TetMesh m;
+  m.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0.3, 0.3, 0.3), Vec3(0.3, 0.3, -1)};
+  const int a = 0, b = 1, c = 2, e = 3, d = 4, v = 5;
+  m.points.push_back((m.points[a] + m.points[b] + m.points[c] + m.points[e]) / 4.0);
+  const auto positive = [&](core::Tet t) {
+    const auto& p = m.points;
+    if ((p[t[1]] - p[t[0]]).dot((p[t[2]] - p[t[0]]).cross(p[t[3]] - p[t[0]])) < 0) std::swap(t[0], t[1]);
+    return t;
+  };
+  for (const core::Tet& t : {core::Tet{v, b, c, e}, core::Tet{a, v, c, e}, core::Tet{a, b, v, e}, core::Tet{a, b, c, v},
+                             core::Tet{a, b, c, d}})
+    m.cells.push_back(positive(t));
+  const std::vector<core::Tri> tris = core::boundary_triangles(core::boundary(m));
+  std::vector<int> labels;
+  for (const auto& t : tris) {
+    const bool cap = std::find(t.begin(), t.end(), e) != t.end();
+    const auto& p = m.points;
+    labels.push_back(core::dominant_axis_label(cap ? Vec3(0, 0, 1) : Vec3((p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]))));
+  }
+  mapping::LabeledTetMesh lm = mapping::label_tet_mesh(m, tris, labels);
+  const std::vector<mapping::LockedVertex> locked = mapping::locked_interior_vertices(lm);
+  ASSERT_EQ(locked.size(), 1u);
+  EXPECT_EQ(locked[0].vertex, v);
+  EXPECT_EQ(locked[0].face, (std::array<int, 3>{a, b, c}));
+  std::vector<char> touched(lm.mesh.cells.size(), 0);
+  const double before = volume(lm.mesh);
+  ASSERT_TRUE(mapping::split_interior_face(lm, locked[0].face, touched));
+  EXPECT_EQ(lm.mesh.num_cells(), 9);  // the two tets on the face became three each
+  EXPECT_NEAR(volume(lm.mesh), before, 1e-12);
+  for (const auto& t : lm.mesh.cells) {
+    const auto& p = lm.mesh.points;
+    EXPECT_GT((p[t[1]] - p[t[0]]).dot((p[t[2]] - p[t[0]]).cross(p[t[3]] - p[t[0]])), 0.0);
+  }
+  mapping::refresh_boundary(lm);
+  mapping::update_charts(lm);
+  EXPECT_TRUE(mapping::locked_interior_vertices(lm).empty());
+  EXPECT_FALSE(mapping::split_interior_face(lm, {a, b, e}, touched));  // a boundary face has one tet
+}
+
 TEST(LabeledMesh, MismatchedBoundaryIsRefused) {
   mapping::LabeledTetMesh lm = labeled_box();
   std::vector<core::Tri> tris = lm.boundary;
