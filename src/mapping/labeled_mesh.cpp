@@ -253,29 +253,42 @@ int split_edges(LabeledTetMesh& lm, const std::vector<std::array<int, 2>>& edges
   return count;
 }
 
-bool split_boundary_triangle(LabeledTetMesh& lm, int f, std::vector<char>& touched, std::vector<Vec3>* other) {
-  core::TetMesh& mesh = lm.mesh;
-  const int t = lm.boundary_cell[f];
-  if (touched[t]) return false;
-  const Tri tri = lm.boundary[f];
+namespace {
+
+//! Append the centroid of `face` to the mesh's points (and to `other` when given); its index.
+int add_face_centroid(core::TetMesh& mesh, const std::array<int, 3>& face, std::vector<Vec3>* other) {
   const int m = mesh.num_points();
-  mesh.points.push_back((mesh.points[tri[0]] + mesh.points[tri[1]] + mesh.points[tri[2]]) / 3.0);
-  if (other) other->push_back(((*other)[tri[0]] + (*other)[tri[1]] + (*other)[tri[2]]) / 3.0);
+  mesh.points.push_back((mesh.points[face[0]] + mesh.points[face[1]] + mesh.points[face[2]]) / 3.0);
+  if (other) other->push_back(((*other)[face[0]] + (*other)[face[1]] + (*other)[face[2]]) / 3.0);
+  return m;
+}
+
+//! Tet t in three, point m (inside its face `face`) taking each face vertex's place in turn:
+//! replacing one face vertex by a point inside the face keeps the orientation.
+void split_tet_at_face_point(core::TetMesh& mesh, int t, const std::array<int, 3>& face, int m) {
   const core::Tet old = mesh.cells[t];
-  // Replacing one face vertex by a point inside the face keeps the orientation.
-  bool first = true;
   for (int k = 0; k < 3; ++k) {
     core::Tet nt = old;
     for (int& v : nt)
-      if (v == tri[k]) v = m;
-    if (first) {
+      if (v == face[k]) v = m;
+    if (k == 0) {
       mesh.cells[t] = nt;
-      first = false;
     } else {
       mesh.cells.push_back(nt);
       if (!mesh.labels.empty()) mesh.labels.push_back(mesh.labels[t]);
     }
   }
+}
+
+}  // namespace
+
+bool split_boundary_triangle(LabeledTetMesh& lm, int f, std::vector<char>& touched, std::vector<Vec3>* other) {
+  core::TetMesh& mesh = lm.mesh;
+  const int t = lm.boundary_cell[f];
+  if (touched[t]) return false;
+  const Tri tri = lm.boundary[f];
+  const int m = add_face_centroid(mesh, tri, other);
+  split_tet_at_face_point(mesh, t, tri, m);
   touched.resize(mesh.cells.size(), 1);
   touched[t] = 1;
   const int label = lm.labels[f];
@@ -339,25 +352,8 @@ bool split_interior_face(LabeledTetMesh& lm, std::array<int, 3> face, std::vecto
     if (hits == 3) cells.push_back(t);
   }
   if (cells.size() != 2 || touched[cells[0]] || touched[cells[1]]) return false;
-  const int m = mesh.num_points();
-  mesh.points.push_back((mesh.points[face[0]] + mesh.points[face[1]] + mesh.points[face[2]]) / 3.0);
-  if (other) other->push_back(((*other)[face[0]] + (*other)[face[1]] + (*other)[face[2]]) / 3.0);
-  for (int t : cells) {
-    const core::Tet old = mesh.cells[t];
-    bool first = true;
-    for (int fv : face) {
-      core::Tet nt = old;
-      for (int& v : nt)
-        if (v == fv) v = m;
-      if (first) {
-        mesh.cells[t] = nt;
-        first = false;
-      } else {
-        mesh.cells.push_back(nt);
-        if (!mesh.labels.empty()) mesh.labels.push_back(mesh.labels[t]);
-      }
-    }
-  }
+  const int m = add_face_centroid(mesh, face, other);
+  for (int t : cells) split_tet_at_face_point(mesh, t, face, m);
   touched.resize(mesh.cells.size(), 1);
   for (int t : cells) touched[t] = 1;
   return true;
