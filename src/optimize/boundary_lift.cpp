@@ -19,12 +19,23 @@ BoundaryLift lift_boundary(const core::HexMesh& mesh, const TargetSurface& targe
   PC_REQUIRE(edge_length.size() == mesh.points.size(), "lift_boundary: one edge length per vertex");
   const core::HexBoundary b = core::boundary(mesh);
   const auto& quads = b.surface.cells;
-  // Target normal at each quad's centre (queries in parallel, results in quad order).
+  // Target normal at each quad's centre (queries in parallel, results in quad order). Only
+  // positive quads: the normal of the closest triangle facing the quad's way within the quad's
+  // size (TargetSurface::closest_point_facing), so that a quad beside a thin part of the target
+  // is not held to the far side's orientation; while untangling a quad's own orientation may be
+  // wrong, so it takes the closest triangle's.
   std::vector<Vec3> normal(quads.size());
   tbb::parallel_for(std::size_t{0}, quads.size(), [&](std::size_t f) {
     Vec3 c = Vec3::Zero();
-    for (int s : quads[f]) c += mesh.points[b.vertex_map[s]];
-    normal[f] = target.normal(c / 4.0);
+    double h = 0;
+    for (int s : quads[f]) {
+      c += 0.25 * mesh.points[b.vertex_map[s]];
+      h += 0.25 * edge_length[b.vertex_map[s]];
+    }
+    const auto& q = quads[f];
+    const auto at = [&](int i) -> const Vec3& { return mesh.points[b.vertex_map[q[i]]]; };
+    normal[f] = only_positive ? target.closest_point_facing(c, (at(2) - at(0)).cross(at(3) - at(1)), h).second
+                              : target.normal(c);
   });
   BoundaryLift lift;
   const int nv = mesh.num_points();

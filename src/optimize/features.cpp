@@ -145,6 +145,68 @@ Vec3 TargetSurface::normal(const Vec3& p) const {
   return impl_->normals[static_cast<std::size_t>(hit.second - impl_->triangles.begin())];
 }
 
+namespace {
+
+//! CGAL AABB traversal traits: the closest point among the primitives whose normal faces n
+//! (a node is visited only when its box is closer than the best point so far).
+class FacingProjection {
+ public:
+  //! Only points closer than sqrt(bound2) count.
+  FacingProjection(const std::vector<Triangle3>& triangles, const std::vector<Vec3>& normals, const Vec3& n,
+                   double bound2)
+      : triangles_(triangles), normals_(normals), n_(n), best_(bound2) {}
+  [[nodiscard]] bool go_further() const { return true; }
+  void intersection(const Point3& q, const TriPrimitive& primitive) {
+    const auto k = static_cast<std::size_t>(primitive.id() - triangles_.begin());
+    if (!(normals_[k].dot(n_) > 0)) return;
+    const Point3 c = K().construct_projected_point_3_object()(*primitive.id(), q);
+    const double d = CGAL::squared_distance(q, c);
+    if (d < best_) {
+      best_ = d;
+      point_ = c;
+      index_ = k;
+    }
+  }
+  template <class Node>
+  [[nodiscard]] bool do_intersect(const Point3& q, const Node& node) const {
+    const CGAL::Bbox_3& b = node.bbox();
+    double d = 0;
+    for (int i = 0; i < 3; ++i) {
+      const double below = b.min(i) - q[i], above = q[i] - b.max(i);
+      const double gap = std::max({below, above, 0.0});
+      d += gap * gap;
+    }
+    return d < best_;
+  }
+  [[nodiscard]] bool found() const { return index_ != kNone; }
+  [[nodiscard]] Vec3 point() const { return from_cgal(point_); }
+  [[nodiscard]] std::size_t index() const { return index_; }
+
+ private:
+  static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+  const std::vector<Triangle3>& triangles_;
+  const std::vector<Vec3>& normals_;
+  Vec3 n_;
+  double best_;
+  Point3 point_;
+  std::size_t index_ = kNone;
+};
+
+}  // namespace
+
+std::pair<Vec3, Vec3> TargetSurface::closest_point_facing(const Vec3& p, const Vec3& n, double reach) const {
+  const Impl& m = *impl_;
+  const auto hit = m.tri_tree.closest_point_and_primitive(to_cgal(p));
+  const auto k = static_cast<std::size_t>(hit.second - m.triangles.begin());
+  const std::pair<Vec3, Vec3> closest{from_cgal(hit.first), m.normals[k]};
+  if (m.normals[k].dot(n) > 0 || !(n.squaredNorm() > 0) || !(reach > 0)) return closest;
+  const double bound = (closest.first - p).norm() + reach;
+  FacingProjection facing(m.triangles, m.normals, n, bound * bound);
+  m.tri_tree.traversal(to_cgal(p), facing);
+  if (!facing.found()) return closest;
+  return {facing.point(), m.normals[facing.index()]};
+}
+
 Vec3 TargetSurface::closest_feature_point(const Vec3& p) const {
   if (impl_->segments.empty()) return p;
   return from_cgal(impl_->seg_tree.closest_point(to_cgal(p)));

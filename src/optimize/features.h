@@ -8,6 +8,7 @@
 
 #include <array>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace polycube::optimize {
@@ -48,6 +49,15 @@ class TargetSurface {
   //! Outward unit normal of the surface's triangle closest to p (outward: the surface's
   //! orientation is flipped when its signed volume is negative).
   [[nodiscard]] core::Vec3 normal(const core::Vec3& p) const;
+  //! Closest point to p of the triangles whose outward normal makes a positive dot product with
+  //! n, and that triangle's normal, when it is at most `reach` farther than the closest point of
+  //! all triangles: where the surface is thinner than the distance from p, the closest point may
+  //! lie on the side facing away (the far side of an ear or a fin), and a boundary pulled there
+  //! crosses the rest of the surface. Otherwise (or when n is zero) the closest point of all
+  //! triangles and its normal: a boundary folded farther than `reach` is not sent across the
+  //! model to a side that faces its way.
+  [[nodiscard]] std::pair<core::Vec3, core::Vec3> closest_point_facing(const core::Vec3& p, const core::Vec3& n,
+                                                                       double reach) const;
   //! Closest point of the feature lines to p (p itself when there is no feature edge).
   [[nodiscard]] core::Vec3 closest_feature_point(const core::Vec3& p) const;
   //! Index into features().corners of the corner nearest to p (-1 when there is none).

@@ -155,6 +155,7 @@ struct Problem {
       stiffness;  //!< per attraction: weight factor, raised where the vertex drifted
   std::vector<double>
       vertex_weight;  //!< #V attraction weight of a boundary vertex before stiffening
+  std::vector<std::array<int, 4>> quads;  //!< the boundary quads (outward)
 
   //! Move every attraction target to the closest point of its surface or feature lines.
   //! Put every attracted vertex exactly on its target, except where that would invert a
@@ -225,13 +226,34 @@ struct Problem {
     return d;
   }
 
-  void project(const Eigen::VectorXd& x, std::vector<solve::Attraction>& attr) const {
+  //! Move every attraction target to the closest point of the feature lines (feature vertices)
+  //! or of the surface triangles facing the way the hex boundary faces there (the others): see
+  //! TargetSurface::closest_point_facing. Attractions beyond the mesh's vertices are the centres
+  //! of `quads` from point `centre_base` on (face_attraction.h).
+  void project(const Eigen::VectorXd& x, std::vector<solve::Attraction>& attr, int centre_base = -1) const {
+    const auto point = [&x](int v) -> Vec3 { return x.segment<3>(3 * static_cast<Eigen::Index>(v)); };
+    std::vector<Vec3> quad_normal(quads.size());
+    std::vector<Vec3> vertex_normal(roles.role.size(), Vec3::Zero());
+    for (std::size_t f = 0; f < quads.size(); ++f) {
+      const auto& q = quads[f];
+      quad_normal[f] = (point(q[2]) - point(q[0])).cross(point(q[3]) - point(q[1]));
+      for (int v : q) vertex_normal[v] += quad_normal[f];
+    }
     tbb::parallel_for(std::size_t{0}, attr.size(), [&](std::size_t k) {
-      const Vec3 p = x.segment<3>(3 * static_cast<Eigen::Index>(attr[k].vertex));
-      const auto v = static_cast<std::size_t>(attr[k].vertex);  // beyond the mesh: a quad centre
-      attr[k].target = v < roles.role.size() && roles.role[v] == VertexRole::Feature
-                           ? target->closest_feature_point(p)
-                           : target->closest_point(p);
+      const Vec3 p = point(attr[k].vertex);
+      const auto v = static_cast<std::size_t>(attr[k].vertex);
+      if (v < roles.role.size() && roles.role[v] == VertexRole::Feature) {
+        attr[k].target = target->closest_feature_point(p);
+        return;
+      }
+      if (v < roles.role.size()) {
+        attr[k].target = target->closest_point_facing(p, vertex_normal[v], roles.edge_length[v]).first;
+        return;
+      }
+      const auto& q = quads[v - static_cast<std::size_t>(centre_base)];
+      double h = 0;
+      for (int c : q) h += 0.25 * roles.edge_length[c];
+      attr[k].target = target->closest_point_facing(p, quad_normal[v - static_cast<std::size_t>(centre_base)], h).first;
     });
   }
 };
@@ -241,6 +263,7 @@ Problem make_problem(core::HexMesh& mesh, const TargetSurface& target,
   Problem pb;
   pb.target = &target;
   pb.roles = classify_vertices(mesh, target, o.feature_angle, o.feature_distance);
+  pb.quads = boundary_quads(mesh);
   const int nv = mesh.num_points();
   // Corners take their target positions now and stay there.
   for (int v = 0; v < nv; ++v)
@@ -315,9 +338,11 @@ solve::UntangleResult run(const Optimization& w, solve::UntangleOptions uo, bool
     reduction = with_apexes(reduction, lift);
   }
   uo.attractions = pb.attractions;
+  int centre_base = -1;
   if (face_weight > 0) {
-    const std::vector<std::array<int, 4>> quads = boundary_quads(mesh);
+    const std::vector<std::array<int, 4>>& quads = pb.quads;
     const int base = reduction.num_points();
+    centre_base = base;
     reduction = with_quad_centres(reduction, quads);
     std::vector<solve::Attraction> centres(quads.size());
     for (std::size_t k = 0; k < quads.size(); ++k) {
@@ -326,7 +351,7 @@ solve::UntangleResult run(const Optimization& w, solve::UntangleOptions uo, bool
       for (int v : quads[k]) weight += 0.25 * pb.vertex_weight[v];
       centres[k].weight = face_weight * weight;
     }
-    pb.project(reduction.apply(variables_of(pb, mesh)), centres);
+    pb.project(reduction.apply(variables_of(pb, mesh)), centres, base);
     uo.attractions.insert(uo.attractions.end(), centres.begin(), centres.end());
   }
   // Last, so that the apexes and quad centres keep the point numbers their elements use.
@@ -335,8 +360,8 @@ solve::UntangleResult run(const Optimization& w, solve::UntangleOptions uo, bool
     uo.linear_solver = solve::NewtonSolver::ConjugateGradient;
     uo.cg_iterations = o.cg_iterations;
   }
-  uo.on_iteration = [&pb](int, const Eigen::VectorXd& x, std::vector<solve::Attraction>& attr) {
-    pb.project(x, attr);
+  uo.on_iteration = [&pb, centre_base](int, const Eigen::VectorXd& x, std::vector<solve::Attraction>& attr) {
+    pb.project(x, attr, centre_base);
     return true;
   };
   Eigen::VectorXd y = variables_of(pb, mesh);

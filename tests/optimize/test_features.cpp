@@ -43,6 +43,26 @@ TEST(Features, ClosestPointsOnSurfaceAndFeatureLines) {
   EXPECT_LT((t.corner_position(k) - core::Vec3(1, 1, 0)).norm(), 1e-12);
 }
 
+// A slab 0.1 thick: a point 0.3 below it is closest to the bottom face, but a boundary vertex
+// there that faces up belongs to the top face, 0.4 away; only within `reach` of the closest
+// distance is the facing side taken.
+TEST(Features, ClosestPointFacingTakesTheSideFacingTheQuerysWayWithinReach) {
+  const core::TriMesh slab = test::box_surface(10, 10, 0.1);
+  const optimize::TargetSurface t(slab, optimize::detect_features(slab, 40.0));
+  const core::Vec3 p(5, 5, -0.3);
+  const auto up = t.closest_point_facing(p, {0, 0, 1}, 0.2);
+  EXPECT_LT((up.first - core::Vec3(5, 5, 0.1)).norm(), 1e-12);
+  EXPECT_LT((up.second - core::Vec3(0, 0, 1)).norm(), 1e-12);
+  const auto down = t.closest_point_facing(p, {0, 0, -1}, 0.2);
+  EXPECT_LT((down.first - core::Vec3(5, 5, 0)).norm(), 1e-12);
+  EXPECT_LT((down.second - core::Vec3(0, 0, -1)).norm(), 1e-12);
+  // The top face is 0.1 farther than the bottom one: beyond a reach of 0.05.
+  const auto short_reach = t.closest_point_facing(p, {0, 0, 1}, 0.05);
+  EXPECT_LT((short_reach.first - core::Vec3(5, 5, 0)).norm(), 1e-12);
+  // No direction: the closest point.
+  EXPECT_LT((t.closest_point_facing(p, core::Vec3::Zero(), 1.0).first - core::Vec3(5, 5, 0)).norm(), 1e-12);
+}
+
 TEST(VertexRoles, GridOfABox) {
   const int n = 4;
   const core::HexMesh m = test::box_grid(n, n, n);

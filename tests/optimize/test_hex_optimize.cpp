@@ -156,6 +156,38 @@ TEST(HexOptimize, DefaultsKeepACurvedBoundaryWithinTheHausdorffBound) {
   EXPECT_TRUE(check.ok()) << check.reason();
 }
 
+// A block 4 x 2 x 2 with a pocket 0.2 wide and 1 deep cut into its top, meshed with the pocket's
+// walls as hex faces; then one vertex of each wall pushed 0.3 across the pocket, so that the
+// walls cross. Each pushed vertex is now closer to the opposite wall (0.1) than to its own
+// (0.3): the closest point would hold the crossing, the closest point facing the vertex's own
+// way (TargetSurface::closest_point_facing) takes each wall back.
+TEST(HexOptimize, WallsPushedAcrossANarrowPocketGoBackToTheirOwnSides) {
+  const std::array<double, 10> xs{0, 0.5, 1, 1.5, 1.9, 2.1, 2.5, 3, 3.5, 4};
+  const int nx = 9, ny = 4, nz = 4;
+  core::HexMesh full = test::lattice_hexes(nx, ny, nz, [&](int i, int j, int k) {
+    return core::Vec3(xs[static_cast<std::size_t>(i)], 0.5 * j, 0.5 * k);
+  });
+  core::HexMesh m;
+  m.points = full.points;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        if (!(i == 4 && k >= 2 && (j == 1 || j == 2))) m.cells.push_back(full.cells[static_cast<std::size_t>(i + nx * (j + ny * k))]);
+  const core::TriMesh target = quality::triangulate(core::boundary(m).surface);
+  ASSERT_TRUE(optimize::check_foldover(m).ok());
+  const auto id = [&](int i, int j, int k) { return i + (nx + 1) * (j + (ny + 1) * k); };
+  const int left = id(4, 2, 3), right = id(5, 2, 3);  // (1.9, 1, 1.5) and (2.1, 1, 1.5)
+  m.points[left].x() = 2.2;
+  m.points[right].x() = 1.8;
+  ASSERT_EQ(quality::scaled_jacobian(m).inverted, 0);
+  ASSERT_GT(optimize::check_foldover(m).boundary_self_intersections, 0);
+  optimize::optimize_hex_mesh(m, target);
+  const auto check = optimize::check_foldover(m);
+  EXPECT_TRUE(check.ok()) << check.reason();
+  EXPECT_NEAR(m.points[left].x(), 1.9, 0.02);
+  EXPECT_NEAR(m.points[right].x(), 2.1, 0.02);
+}
+
 TEST(HexOptimize, Deterministic) {
   core::HexMesh a = test::box_grid(6, 5, 4, 1.2, 1, 0.8);
   test::perturb(a, 0.05, 5, [](const core::Vec3&) { return true; });
