@@ -172,7 +172,8 @@ TEST(HexOptimize, WallsPushedAcrossANarrowPocketGoBackToTheirOwnSides) {
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i)
-        if (!(i == 4 && k >= 2 && (j == 1 || j == 2))) m.cells.push_back(full.cells[static_cast<std::size_t>(i + nx * (j + ny * k))]);
+        if (!(i == 4 && k >= 2 && (j == 1 || j == 2)))
+          m.cells.push_back(full.cells[static_cast<std::size_t>(i + nx * (j + ny * k))]);
   const core::TriMesh target = quality::triangulate(core::boundary(m).surface);
   ASSERT_TRUE(optimize::check_foldover(m).ok());
   const auto id = [&](int i, int j, int k) { return i + (nx + 1) * (j + (ny + 1) * k); };
