@@ -30,6 +30,11 @@ const char* label_name(int label) {
   return (label >= 0 && label < 6) ? kNames[label] : "?";
 }
 
+const char* axis_name(int axis) {
+  static constexpr const char* kNames[3] = {"x", "y", "z"};
+  return (axis >= 0 && axis < 3) ? kNames[axis] : "?";
+}
+
 Vec3 label_direction(int label) {
   PC_REQUIRE(label >= 0 && label < 6, "label out of range");
   Vec3 d = Vec3::Zero();

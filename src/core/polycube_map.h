@@ -37,6 +37,8 @@ constexpr int label_axis(int label) { return label / 2; }
 constexpr int label_sign(int label) { return (label % 2 == 0) ? 1 : -1; }
 //! "+X", "-X", "+Y", "-Y", "+Z", "-Z" (or "?" outside 0..5).
 const char* label_name(int label);
+//! "x", "y", "z" (or "?" outside 0..2).
+const char* axis_name(int axis);
 
 //! The label of the opposite direction (+X <-> -X, ...).
 constexpr int opposite_label(int label) { return label ^ 1; }

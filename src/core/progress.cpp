@@ -11,7 +11,7 @@
 namespace polycube::core {
 
 namespace {
-std::mutex g_mutex;
+std::mutex g_progress_mutex;
 std::shared_ptr<ProgressClient> g_client;
 thread_local ProgressTask* t_current = nullptr;  // the innermost task running on this thread
 //! The least share of the outermost bar an inner task runs on: below it the task gets a bar of
@@ -20,7 +20,7 @@ constexpr double kLeastShare = 0.01;
 }  // namespace
 
 void set_progress_client(std::shared_ptr<ProgressClient> client) {
-  std::lock_guard lock(g_mutex);
+  std::lock_guard lock(g_progress_mutex);
   g_client = std::move(client);
 }
 
@@ -61,7 +61,7 @@ ProgressTask::ProgressTask(std::string name, std::int64_t total)
     return;
   }
   {
-    std::lock_guard lock(g_mutex);
+    std::lock_guard lock(g_progress_mutex);
     client_ = g_client;
   }
   if (client_) client_->begin(name_);

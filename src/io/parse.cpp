@@ -198,21 +198,21 @@ void ByteReader::fail(const std::string& what) const { throw core::InputError(na
 TextWriter& TextWriter::operator<<(double v) {
   char buf[64];
   const auto r = std::to_chars(buf, buf + sizeof(buf), v);
-  out_.append(buf, r.ptr);
+  out_.append(buf, static_cast<std::size_t>(r.ptr - buf));
   return *this;
 }
 
 TextWriter& TextWriter::operator<<(float v) {
   char buf[64];
   const auto r = std::to_chars(buf, buf + sizeof(buf), v);
-  out_.append(buf, r.ptr);
+  out_.append(buf, static_cast<std::size_t>(r.ptr - buf));
   return *this;
 }
 
 TextWriter& TextWriter::operator<<(long long v) {
   char buf[32];
   const auto r = std::to_chars(buf, buf + sizeof(buf), v);
-  out_.append(buf, r.ptr);
+  out_.append(buf, static_cast<std::size_t>(r.ptr - buf));
   return *this;
 }
 

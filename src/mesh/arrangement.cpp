@@ -2,6 +2,7 @@
 #include "mesh/arrangement.h"
 
 #include "core/errors.h"
+#include "core/polycube_map.h"
 
 #include <fmt/format.h>
 
@@ -9,10 +10,6 @@
 #include <utility>
 
 namespace polycube::mesh {
-
-namespace {
-constexpr const char* kAxis[3] = {"x", "y", "z"};
-}
 
 int Arrangement::nearest_level(int a, double x) const {
   const auto& l = level[a];
@@ -49,7 +46,7 @@ Arrangement build_arrangement(const structure::PolycubeStructure& s, const TetLo
     if (arr.level[a].size() < 2)
       throw core::InputError(
           fmt::format("the polycube has {} chart plane(s) along {}: not a closed polycube",
-                      arr.level[a].size(), kAxis[a]));
+                      arr.level[a].size(), core::axis_name(a)));
   }
   const long long nbox = static_cast<long long>(arr.boxes(0)) * arr.boxes(1) * arr.boxes(2);
   if (nbox > max_boxes)

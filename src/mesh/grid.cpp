@@ -3,6 +3,7 @@
 #include "core/elements.h"
 #include "core/errors.h"
 #include "core/log.h"
+#include "core/polycube_map.h"
 #include "core/progress.h"
 #include "core/topology.h"
 #include "mesh/arrangement.h"
@@ -34,8 +35,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
-
-constexpr const char* kAxis[3] = {"x", "y", "z"};
 
 std::string fmt_point(const Vec3& p) {
   return fmt::format("({:.6g}, {:.6g}, {:.6g})", p.x(), p.y(), p.z());
@@ -306,9 +305,9 @@ void collapsed_edges(const SnappedCorners& sc, std::vector<SnapDefect>& out) {
     d.corners = {pe.corners[0], pe.corners[1]};
     d.positions = {sc.scaled(pe.corners[0]), sc.scaled(pe.corners[1])};
     d.lattice = snapped[pe.corners[0]];
-    d.description = fmt::format(
-        "edge {} (corners {}-{}, along {}, length {:.6g}) collapses to zero length", e,
-        pe.corners[0], pe.corners[1], pe.axis >= 0 ? kAxis[pe.axis] : "?", pe.length * sc.c.scale);
+    d.description =
+        fmt::format("edge {} (corners {}-{}, along {}, length {:.6g}) collapses to zero length", e,
+                    pe.corners[0], pe.corners[1], core::axis_name(pe.axis), pe.length * sc.c.scale);
     out.push_back(std::move(d));
   }
 }
@@ -357,8 +356,8 @@ ChartPolygons collapsed_charts(const SnappedCorners& sc, std::vector<SnapDefect>
       d.lattice = snapped[s.faces[ci].loops[0].corners[0]];
       d.description =
           fmt::format("chart {} ({} at {} = {:.6g}, area {:.6g}) collapses to zero area", ci,
-                      core::label_name(ch.label), kAxis[ch.axis], ch.coordinate * sc.c.scale,
-                      ch.area * sc.c.scale * sc.c.scale);
+                      core::label_name(ch.label), core::axis_name(ch.axis),
+                      ch.coordinate * sc.c.scale, ch.area * sc.c.scale * sc.c.scale);
       out.push_back(std::move(d));
     }
   }
@@ -401,8 +400,8 @@ void corners_on_facets(const SnappedCorners& sc, const ChartPolygons& polys, std
         d.lattice = q;
         d.description = fmt::format(
             "corner {} {} is pushed onto chart {} ({} at {} = {:.6g}) at lattice point {}", cid,
-            fmt_point(sc.scaled(static_cast<int>(cid))), ci, core::label_name(ch.label), kAxis[a],
-            ch.coordinate * sc.c.scale, fmt_point(q));
+            fmt_point(sc.scaled(static_cast<int>(cid))), ci, core::label_name(ch.label),
+            core::axis_name(a), ch.coordinate * sc.c.scale, fmt_point(q));
         out.push_back(std::move(d));
       }
     }

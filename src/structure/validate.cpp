@@ -2,6 +2,7 @@
 
 #include "core/elements.h"
 #include "core/errors.h"
+#include "core/polycube_map.h"
 
 #include <Eigen/Geometry>
 
@@ -23,8 +24,6 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using core::Vec3;
 
 Kernel::Point_3 cgal_point(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
-
-constexpr const char* kAxisNames[3] = {"x", "y", "z"};
 
 //! Collects offending element descriptions, keeping only the first few.
 struct Listing {
@@ -165,7 +164,7 @@ MapDiagnosis diagnose_map(const core::PolycubeMap& map, const ValidateOptions& o
       tilted.add(max_listed, "triangle " + std::to_string(tris[f][0]) + "-" +
                                  std::to_string(tris[f][1]) + "-" + std::to_string(tris[f][2]) +
                                  " of tet " + std::to_string(boundary_slots[f] / 4) + " spans " +
-                                 fmt_double(span) + " along " + kAxisNames[axis]);
+                                 fmt_double(span) + " along " + core::axis_name(axis));
   }
   d.non_axis_aligned = tilted.count;
   if (tilted.count > 0)

@@ -105,7 +105,9 @@ TEST(CliProgress, OffATerminalTheLogHasNoBarDrawing) {
     std::smatch m;
     ASSERT_TRUE(std::regex_match(l, m, line)) << l;
     const int s = std::stoi(m[3]);
-    if (last_seconds.count(m[1])) EXPECT_GE(s - last_seconds[m[1]], 9) << l;  // 10 s apart, to the rounding
+    if (last_seconds.count(m[1])) {
+      EXPECT_GE(s - last_seconds[m[1]], 9) << l;  // 10 s apart, to the rounding
+    }
     last_seconds[m[1]] = s;
   }
   fs::remove_all(dir);

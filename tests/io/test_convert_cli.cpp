@@ -4,6 +4,8 @@
 #include "fixtures.h"
 #include "io/mesh_io.h"
 
+#include "support/files.h"
+
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -17,26 +19,14 @@ namespace polycube::io {
 namespace {
 
 namespace fs = std::filesystem;
+using polycube::test::quoted;
+using polycube::test::slurp;
 using test::expect_points_near;
-
-std::string quoted(const fs::path& p) {
-  std::string s(1, '\'');  // built piecewise: GCC 12 warns falsely on "'" + string
-  s += p.string();
-  s += '\'';
-  return s;
-}
 
 struct CliRun {
   int code = -1;
   std::string out, err;
 };
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 //! CliRun `polycube <args>` with stdout and stderr captured.
 CliRun polycube(const std::string& args, const test::TempDir& dir) {

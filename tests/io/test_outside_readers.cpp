@@ -4,6 +4,8 @@
 #include "io/fixtures.h"
 #include "io/mesh_io.h"
 
+#include "support/files.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -18,6 +20,7 @@ namespace polycube::io {
 namespace {
 
 namespace fs = std::filesystem;
+using polycube::test::quoted;
 
 //! Run a shell command; its stdout, or nullopt when it exits non-zero.
 std::optional<std::string> output_of(const std::string& command) {
@@ -33,8 +36,6 @@ std::optional<std::string> output_of(const std::string& command) {
 bool have_meshio() { return output_of("/usr/bin/python3 -c 'import meshio' 2>/dev/null").has_value(); }
 bool have_gmsh() { return output_of("gmsh --version >/dev/null 2>&1").has_value(); }
 bool have_vtk() { return output_of("/usr/bin/python3 -c 'import vtkmodules.vtkIOLegacy' 2>/dev/null").has_value(); }
-
-std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
 
 struct Written {
   std::string file;
@@ -87,14 +88,20 @@ TEST(OutsideReaders, MeshioReadsEveryFormatWeWrite) {
     ASSERT_TRUE(out.has_value()) << "meshio could not read " << w.file;
     const nlohmann::json j = nlohmann::json::parse(*out);
     const bool stl = w.file.ends_with(".stl");  // STL has no shared vertices: meshio merges none
-    if (!stl) EXPECT_EQ(j["points"].get<std::size_t>(), w.data.points.size());
+    if (!stl) {
+      EXPECT_EQ(j["points"].get<std::size_t>(), w.data.points.size());
+    }
     const bool edges = w.file.ends_with(".msh") || w.file.ends_with(".mesh");  // our .vtk holds no edges
     using Counts = std::map<std::string, std::size_t>;
     EXPECT_EQ(j["cells"].get<Counts>(), meshio_cells(w.data, edges)) << *out;
-    if (w.file.ends_with(".vtk"))
-      for (const core::Field& f : w.data.cell_data) EXPECT_NE(out->find('"' + f.name + '"'), std::string::npos) << *out;
-    if (w.file.ends_with(".msh") && !w.data.tet_labels.empty())
+    if (w.file.ends_with(".vtk")) {
+      for (const core::Field& f : w.data.cell_data) {
+        EXPECT_NE(out->find('"' + f.name + '"'), std::string::npos) << *out;
+      }
+    }
+    if (w.file.ends_with(".msh") && !w.data.tet_labels.empty()) {
       EXPECT_NE(out->find("gmsh:physical"), std::string::npos) << *out;
+    }
   }
 }
 

@@ -5,6 +5,8 @@
 #include "fixtures.h"
 #include "io/mesh_io.h"
 
+#include "support/files.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -15,6 +17,7 @@ namespace polycube::io {
 namespace {
 
 namespace fs = std::filesystem;
+using polycube::test::slurp;
 using test::expect_points_near;
 
 //! The mixed surface (8 triangles, 1 quad) with a face colour, a scalar face field and a
@@ -47,13 +50,6 @@ void expect_same_fields(const std::vector<core::Field>& a, const std::vector<cor
       for (double& v : expected) v = static_cast<double>(static_cast<float>(v));
     EXPECT_EQ(a[f].values, expected) << a[f].name;
   }
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 std::string header_of(const std::string& ply) { return ply.substr(0, ply.find("end_header")); }

@@ -6,6 +6,8 @@
 #include "core/topology.h"
 #include "fixtures.h"
 
+#include "support/files.h"
+
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -18,6 +20,8 @@ namespace polycube::io {
 namespace {
 
 namespace fs = std::filesystem;
+using polycube::test::quoted;
+using polycube::test::slurp;
 
 //! The perturbed unit cube of the fixtures scaled to \p size mm, moved by \p offset, as
 //! outward triangles (each quad split 0-1-2, 0-2-3).
@@ -51,20 +55,6 @@ std::size_t files_in(const fs::path& dir) {
   std::size_t n = 0;
   for ([[maybe_unused]] const auto& entry : fs::recursive_directory_iterator(dir)) ++n;
   return n;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::string quoted(const fs::path& p) {
-  std::string s(1, '\'');  // built piecewise: GCC 12 warns falsely on "'" + string
-  s += p.string();
-  s += '\'';
-  return s;
 }
 
 TEST(ThreeMf, RoundTripKeepsNamesGeometryAndColours) {

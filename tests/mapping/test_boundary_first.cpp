@@ -16,10 +16,6 @@ namespace {
 
 using core::Vec3;
 
-double det(const std::vector<Vec3>& p, const core::Tet& c) {
-  return (p[c[1]] - p[c[0]]).dot((p[c[2]] - p[c[0]]).cross(p[c[3]] - p[c[0]]));
-}
-
 //! An 8×8×8 grid of unit cubes with the octant x, y, z ≥ 4 removed (a concave corner at
 //! (4, 4, 4), three concave edges), 6 tets per cube, its boundary labeled by the normals and one
 //! chart group per (axis, plane).
@@ -95,7 +91,7 @@ TEST(BoundaryFirst, ScrambledPolycubeGetsStraightEdgesAndNoInvertedTet) {
   }
   EXPECT_EQ(corners, 14);  // 7 box corners and 7 at the notch
   int inverted = 0;
-  for (const auto& c : s.mesh.cells) inverted += det(P, c) <= 0;
+  for (const auto& c : s.mesh.cells) inverted += test::tet_det(P, c) <= 0;
   ASSERT_GT(inverted, 100) << "fixture: the scrambled polycube should be badly tangled";
 
   solve::UntangleOptions o;
@@ -106,7 +102,7 @@ TEST(BoundaryFirst, ScrambledPolycubeGetsStraightEdgesAndNoInvertedTet) {
   EXPECT_EQ(r.tets_inverted, 0);
   EXPECT_EQ(r.charts_inverted, 0);
   // Independently: every tet positive, every triangle facing its label.
-  for (const auto& c : s.mesh.cells) EXPECT_GT(det(P, c), 0.0);
+  for (const auto& c : s.mesh.cells) EXPECT_GT(test::tet_det(P, c), 0.0);
   for (std::size_t f = 0; f < s.tris.size(); ++f) EXPECT_TRUE(core::faces_label(P, s.tris[f], s.labels[f]));
   // Chart coordinates untouched bit for bit; edge vertices back on their uniform positions (the
   // model's arc-length fractions along straight, uniformly subdivided edges).
@@ -137,7 +133,7 @@ TEST(BoundaryFirst, MirroredPolycubeHasItsChartPlanesPutBackInTheModelsOrder) {
   ASSERT_TRUE(r.valid) << r.reason;
   EXPECT_GT(r.reversed_chains, 0);
   EXPECT_LT(r.reversed_chains, r.chains);  // the edges along y and z kept their direction
-  for (const auto& c : s.mesh.cells) EXPECT_GT(det(P, c), 0.0);
+  for (const auto& c : s.mesh.cells) EXPECT_GT(test::tet_det(P, c), 0.0);
   for (std::size_t f = 0; f < s.tris.size(); ++f) EXPECT_TRUE(core::faces_label(P, s.tris[f], s.labels[f]));
   // The x planes (one per group) in the model's order again, each still exact on its chart.
   std::map<int, std::pair<double, double>> plane;  // group -> (model x, polycube x)
@@ -167,7 +163,7 @@ TEST(BoundaryFirst, SqueezedPolycubeEdgesAreLengthenedToAQuarterOfTheModels) {
   const auto r = mapping::place_boundary_first(s.mesh.points, s.mesh.cells, s.tris, s.labels, s.group, P, o, 0.5);
   ASSERT_TRUE(r.valid) << r.reason;
   EXPECT_EQ(r.reversed_chains, 0);
-  for (const auto& c : s.mesh.cells) EXPECT_GT(det(P, c), 0.0);
+  for (const auto& c : s.mesh.cells) EXPECT_GT(test::tet_det(P, c), 0.0);
   std::map<double, double> plane;  // model x -> polycube x, for the x chart planes
   for (int v = 0; v < s.mesh.num_points(); ++v)
     if (s.group[3 * static_cast<std::size_t>(v)] >= 0) plane[s.mesh.points[v].x()] = P[v].x();

@@ -37,10 +37,6 @@ std::pair<std::vector<core::Tri>, std::vector<int>> labeled_boundary(const core:
   return out;
 }
 
-double det(const std::vector<Vec3>& p, const core::Tet& c) {
-  return (p[c[1]] - p[c[0]]).dot((p[c[2]] - p[c[0]]).cross(p[c[3]] - p[c[0]]));
-}
-
 TEST(PlanarityFlow, NoisyBoxFlowsOntoPlanesWithoutFolding) {
   // A box tet mesh whose boundary vertices are pushed off their faces by noise of a fifth of an
   // edge: the flow, started from the noisy positions as the reference, must bring every face's
@@ -62,14 +58,15 @@ TEST(PlanarityFlow, NoisyBoxFlowsOntoPlanesWithoutFolding) {
     if (on_boundary[v])
       for (int d = 0; d < 3; ++d)
         if (group[3 * static_cast<std::size_t>(v) + d] >= 0) mesh.points[v][d] += u(rng);
-  for (const auto& c : mesh.cells) ASSERT_GT(det(mesh.points, c), 0.0) << "fixture: noise inverted a tet";
+  for (const auto& c : mesh.cells)
+    ASSERT_GT(test::tet_det(mesh.points, c), 0.0) << "fixture: noise inverted a tet";
   mapping::PlanarityFlowOptions o;
   o.iterations = 60;
   const auto r = mapping::planarity_flow(mesh, mesh.points, group, 6, tris, labels, 0.5, o);
   ASSERT_EQ(r.points.size(), mesh.points.size());
   EXPECT_EQ(r.inverted, 0);
   EXPECT_LE(r.residual, o.tolerance);
-  for (const auto& c : mesh.cells) EXPECT_GT(det(r.points, c), 0.0);
+  for (const auto& c : mesh.cells) EXPECT_GT(test::tet_det(r.points, c), 0.0);
   // Independently: each face's coordinate spread, against the longest edge of the mesh (the
   // residual is in local mean edge lengths).
   double longest = 0;

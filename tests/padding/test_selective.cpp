@@ -29,8 +29,6 @@ std::vector<std::uint8_t> boundary_facets_where(const core::HexMesh& m, const st
   return sel;
 }
 
-int count(const std::vector<std::uint8_t>& s) { return static_cast<int>(std::count(s.begin(), s.end(), 1)); }
-
 TEST(MappingAnalysis, AnUndistortedGridNeedsNoPadding) {
   const padding::Analysis a = padding::analyze_mapping(test::hex_grid(3, 3, 3));
   EXPECT_EQ(a.analysed_hexes, 0);
@@ -106,7 +104,7 @@ TEST(BinaryProblem, OneFacetInTheMiddleOfAFaceIsClosedByABubbleOrByItsFace) {
   const core::HexMesh g = test::hex_grid(3, 3, 3);
   const auto hard = boundary_facets_where(
       g, [](const Vec3& p) { return p.z() == 3.0 && p.x() >= 1 && p.x() <= 2 && p.y() >= 1 && p.y() <= 2; });
-  ASSERT_EQ(count(hard), 1);
+  ASSERT_EQ(test::count_set(hard), 1);
   const padding::Selection bubble = padding::select_facets_to_pad(g, hard, {.lambda = 0.0, .time_limit = 60});
   EXPECT_TRUE(bubble.optimal);
   EXPECT_EQ(bubble.selected, 6);
@@ -129,7 +127,7 @@ TEST(BinaryProblem, ALargerLambdaNeverAddsTurns) {
   const core::HexMesh g = test::hex_grid(6, 6, 3);
   const auto hard = boundary_facets_where(
       g, [](const Vec3& p) { return p.z() == 3.0 && p.x() >= 2 && p.x() <= 4 && p.y() >= 2 && p.y() <= 4; });
-  ASSERT_EQ(count(hard), 4);
+  ASSERT_EQ(test::count_set(hard), 4);
   int previous_turns = 1 << 30, previous_facets = 0;
   for (double lambda : {0.0, 1.0, 2.0, 4.0}) {
     const padding::Selection s = padding::select_facets_to_pad(g, hard, {.lambda = lambda, .time_limit = 60});

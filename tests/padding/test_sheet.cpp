@@ -38,8 +38,6 @@ std::vector<std::uint8_t> either(std::vector<std::uint8_t> a, const std::vector<
   return a;
 }
 
-int count(const std::vector<std::uint8_t>& s) { return static_cast<int>(std::count(s.begin(), s.end(), 1)); }
-
 struct Counts {
   int hexes, sv, se;
 };
@@ -82,7 +80,7 @@ padding::SheetResult expect_padded(const Pick& pick, Counts expected) {
   EXPECT_EQ(c.sv, expected.sv);
   EXPECT_EQ(c.se, expected.se);
   EXPECT_EQ(r.added_hexes, expected.hexes - kGrid.num_cells());
-  EXPECT_EQ(count(r.padding_layer), r.added_hexes);
+  EXPECT_EQ(test::count_set(r.padding_layer), r.added_hexes);
   const padding::PadResult p = padding::pad_hex_mesh(kFine, test::make_box(3, 3, 3, 3), pick(kFine));
   EXPECT_EQ(p.after.hexes - kFine.num_cells(), p.added_hexes);
   EXPECT_EQ(p.after.scaled_jacobian.inverted + p.after.scaled_jacobian.invalid, 0);
@@ -121,7 +119,7 @@ TEST(Sheet, ThreeFacesAroundACornerTurnAtTheVertex) {
 }
 
 TEST(Sheet, AnInteriorSheetAcrossTheGridIsOneMoreSlice) {
-  ASSERT_EQ(count(plane(plane_x1)(kGrid)), 9);
+  ASSERT_EQ(test::count_set(plane(plane_x1)(kGrid)), 9);
   expect_padded(plane(plane_x1), {36, 8, 40});  // a 4 x 3 x 3 grid
 }
 
@@ -140,7 +138,7 @@ TEST(Sheet, ASheetThroughTheGloballyPaddedSurfaceIsTheGlobalPaddingOfTheLargerGr
 TEST(Sheet, AnInteriorFacetAloneIsRefusedNamingTheEdge) {
   const auto faces = core::unique_faces(kGrid);
   std::vector<std::uint8_t> sel(faces.num_faces(), 0);
-  for (int f = 0; f < faces.num_faces() && count(sel) == 0; ++f)
+  for (int f = 0; f < faces.num_faces() && test::count_set(sel) == 0; ++f)
     if (!faces.is_boundary(f)) {
       bool inner = true;  // a facet none of whose edges is on the boundary
       for (int v : faces.faces[f]) {
@@ -149,7 +147,7 @@ TEST(Sheet, AnInteriorFacetAloneIsRefusedNamingTheEdge) {
       }
       if (inner) sel[f] = 1;
     }
-  ASSERT_EQ(count(sel), 1);
+  ASSERT_EQ(test::count_set(sel), 1);
   const padding::SelectionCheck check = padding::check_selection(kGrid, sel);
   EXPECT_EQ(check.bad_edges, 4);
   try {
@@ -166,7 +164,7 @@ TEST(Sheet, OneSurfaceFacetAloneAtAnEdgeOfTwoHexesIsRefused) {
   // One facet in the middle of the top face: its four edges are E2H edges with it alone.
   const auto sel = facets_where(
       kGrid, [](const Vec3& p) { return p.z() == 3.0 && p.x() >= 1 && p.x() <= 2 && p.y() >= 1 && p.y() <= 2; }, true);
-  ASSERT_EQ(count(sel), 1);
+  ASSERT_EQ(test::count_set(sel), 1);
   EXPECT_EQ(padding::check_selection(kGrid, sel).bad_edges, 4);
   EXPECT_THROW(padding::insert_sheet(kGrid, sel), core::InputError);
 }
@@ -174,7 +172,7 @@ TEST(Sheet, OneSurfaceFacetAloneAtAnEdgeOfTwoHexesIsRefused) {
 TEST(Sheet, ACornerFacetAloneIsValidAtItsConvexEdges) {
   // A facet at a cube corner: two of its edges are E1H (anything goes), two E2H (refused).
   const auto sel = facets_where(kGrid, [](const Vec3& p) { return p.z() == 3.0 && p.x() <= 1 && p.y() <= 1; }, true);
-  ASSERT_EQ(count(sel), 1);
+  ASSERT_EQ(test::count_set(sel), 1);
   EXPECT_EQ(padding::check_selection(kGrid, sel).bad_edges, 2);
 }
 
@@ -194,7 +192,7 @@ TEST(Sheet, FacetsAreFoundByTheirVerticesInAnyOrder) {
   core::Quad q = faces.faces[5];
   std::reverse(q.begin(), q.end());
   const auto sel = padding::select_facets(kGrid, {q});
-  EXPECT_EQ(count(sel), 1);
+  EXPECT_EQ(test::count_set(sel), 1);
   EXPECT_EQ(sel[5], 1);
   EXPECT_THROW(padding::select_facets(kGrid, {{0, 1, 2, 3}}), core::InputError);
 }

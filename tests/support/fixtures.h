@@ -6,11 +6,14 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <numbers>
 #include <utility>
+#include <vector>
 
 namespace polycube::test {
 
@@ -42,6 +45,16 @@ inline core::HexMesh hex_grid(int nx, int ny, int nz, double h = 1.0) {
 inline core::HexMesh box_grid(int nx, int ny, int nz, double sx = 1, double sy = 1, double sz = 1) {
   return lattice_hexes(
       nx, ny, nz, [&](int i, int j, int k) { return Vec3(sx * i / nx, sy * j / ny, sz * k / nz); });
+}
+
+//! Six times the signed volume of tet `c` over the points `p`.
+inline double tet_det(const std::vector<Vec3>& p, const core::Tet& c) {
+  return (p[c[1]] - p[c[0]]).dot((p[c[2]] - p[c[0]]).cross(p[c[3]] - p[c[0]]));
+}
+
+//! How many flags of `s` are set (to 1).
+inline int count_set(const std::vector<std::uint8_t>& s) {
+  return static_cast<int>(std::count(s.begin(), s.end(), 1));
 }
 
 inline double tet_volume(const core::TetMesh& m, int c) {
