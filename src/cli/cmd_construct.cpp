@@ -254,15 +254,19 @@ void register_construct(CLI::App& app) {
   expert.insert(expert.end(), repair_expert.begin(), repair_expert.end());
   add_expert_options(*sub, expert);
   // Fault injection for the tests of --keep-failed and of the fallback attempts: hidden from --help.
-  sub->add_option("--inject-failure", opts->inject_failure,
-                  "Testing only: 'certify' treats the result as not certified, 'attempt-N' the first N attempts as "
-                  "failed")
-      ->check(CLI::IsMember({"certify", "attempt-1", "attempt-2"}))
+  sub->add_option(
+         "--inject-failure", opts->inject_failure,
+         "Testing only: 'certify' treats the result as not certified, 'attempt-N' the first N "
+         "attempts as "
+         "failed, 'uncertified-attempt-N' the first N attempts that certify as not certified")
+      ->check(CLI::IsMember({"certify", "attempt-1", "attempt-2", "uncertified-attempt-1"}))
       ->group("");
   sub->callback([opts] {
     opts->construct.on_attempt = attempt_progress();
     if (opts->inject_failure.rfind("attempt-", 0) == 0)
       opts->construct.inject_failed_attempts = std::stoi(opts->inject_failure.substr(8));
+    if (opts->inject_failure.rfind("uncertified-attempt-", 0) == 0)
+      opts->construct.inject_uncertified_attempts = std::stoi(opts->inject_failure.substr(20));
     run_construct(*opts);
   });
 }

@@ -197,8 +197,10 @@ struct AttemptResult {
   std::optional<PredeformResult> predeform;  //!< its pre-deformation (points cleared)
   std::optional<DeformResult> deformation;   //!< empty when no valid labeling or an unrealizable one
   int failures = 0;                          //!< inverted tets + wrong-facing triangles (+1 when not untangled)
-  bool valid = false;                        //!< untangled and every boundary triangle facing its label
+  bool valid = false;  //!< untangled, every boundary triangle facing its label, certified
   std::string failure;                       //!< why it is not valid
+  std::optional<Certificate> certificate;    //!< of `map`, once certified (valid attempts only)
+  core::PolycubeMap map;  //!< the deformation's map in the input's frame, when certified
 };
 
 //! Failures of a deformation: tets inverted and boundary triangles facing away from their
@@ -329,11 +331,36 @@ double attempt_deadline(double time_limit, double now, bool others_left) {
   return others_left ? now + 0.5 * std::max(0.0, time_limit - now) : std::max(time_limit, now);
 }
 
+core::PolycubeMap map_of(const DeformResult& d, const core::TetMesh& input,
+                         const AxisRotation& rotation);
+
+//! Certify an attempt judged valid, on its map as it will be written (the input's frame). Every
+//! tet positive and every boundary triangle facing its label do not keep the polycube's
+//! boundary from crossing itself elsewhere; such an attempt is not valid, and the plan goes on
+//! to the next one rather than stopping with it.
+void certify_attempt(AttemptResult& r, const core::TetMesh& input, const ConstructOptions& o,
+                     bool inject_failure, ConstructResult& res) {
+  const core::Stopwatch clock;
+  const DeformResult& d = *r.deformation;
+  r.map = map_of(d, input, res.axis_rotation);
+  r.certificate = certify_polycube_map(r.map, d.boundary, d.labels, o.certify);
+  if (inject_failure) r.certificate->failures.push_back("injected failure");
+  res.seconds.certify += clock.seconds();
+  if (r.certificate->certified()) return;
+  r.valid = false;
+  r.failures = 1;
+  r.failure = fmt::format("{}: not certified: {}", r.attempt.name(), r.certificate->reason());
+  core::logger().info("construct: attempt ({}) not certified: {}", r.attempt.name(),
+                      r.certificate->reason());
+}
+
 //! Run the plan: label every attempt, order them (order_by_promise), then deform them in turn
-//! until one is valid; keep the attempt with the fewest failures (the first valid one).
-//! `failures` lists why the others failed.
-std::optional<AttemptResult> run_plan(const std::vector<Attempt>& plan, const Model& model, const ConstructOptions& o,
-                                      const core::Stopwatch& clock, ConstructResult& res, std::vector<std::string>& failures) {
+//! until one is valid and certified; keep the attempt with the fewest failures (the first valid
+//! one). `failures` lists why the others failed.
+std::optional<AttemptResult> run_plan(const std::vector<Attempt>& plan, const Model& model,
+                                      const core::TetMesh& input, const ConstructOptions& o,
+                                      const core::Stopwatch& clock, ConstructResult& res,
+                                      std::vector<std::string>& failures) {
   Predeformations predeformations(model, o, res.seconds);
   std::vector<LabeledAttempt> labeled = label_plan(plan, model, predeformations, o, res.seconds, failures);
   if (!plan.empty()) order_by_promise(labeled, plan.front());
@@ -359,6 +386,7 @@ std::optional<AttemptResult> run_plan(const std::vector<Attempt>& plan, const Mo
       r.failures = 1;
       r.failure = la.attempt.name() + ": injected failure";
     }
+    if (r.valid) certify_attempt(r, input, o, i < o.inject_uncertified_attempts, res);
     if (!r.failure.empty()) failures.push_back(r.failure);
     if (r.deformation && (!kept || r.valid || r.failures < kept->failures)) kept = std::move(r);
     if (kept && kept->valid) break;
@@ -461,23 +489,30 @@ ConstructResult construct_from_prepared(const core::TetMesh& input, const Constr
   const Model model = rotated_model(input, o, res.axis_rotation);
   res.tip_corners = model.tips;
   std::vector<std::string> failures;
-  const std::optional<AttemptResult> kept = run_plan(plan_attempts(o), model, o, clock, res, failures);
+  const std::optional<AttemptResult> kept =
+      run_plan(plan_attempts(o), model, input, o, clock, res, failures);
   res.tried = joined(failures);
   if (!failures.empty()) core::logger().info("construct: failed attempts: {}", res.tried);
   if (!kept) throw NoValidLabeling("no valid polycube labeling reached: " + failure_summary(failures));
-  if (!kept->valid) core::logger().warn("construct: every attempt left inverted tets ({})", failure_summary(failures));
+  if (!kept->valid)
+    core::logger().warn("construct: no attempt was valid ({})", failure_summary(failures));
   report_attempt(*kept, res);
 
   const core::Stopwatch certify_clock;
   const DeformResult& d = *kept->deformation;
-  res.map = map_of(d, input, res.axis_rotation);
-  res.certificate = certify_polycube_map(res.map, d.boundary, d.labels, o.certify);
+  if (kept->certificate) {  // certified (or refused) in the plan
+    res.map = kept->map;
+    res.certificate = *kept->certificate;
+  } else {
+    res.map = map_of(d, input, res.axis_rotation);
+    res.certificate = certify_polycube_map(res.map, d.boundary, d.labels, o.certify);
+  }
   if (!res.certificate.certified())
     throw NotCertified("polycube map not certified: " + res.certificate.reason() +
                            (failures.empty() ? std::string() : " (attempts: " + failure_summary(failures) + ")"),
                        res.map, d.boundary, d.labels);
   describe(d, boundary_in_core_order(d, res.boundary, res.labels), res);
-  res.seconds.certify = certify_clock.seconds();
+  res.seconds.certify += certify_clock.seconds();
   res.seconds.total = clock.seconds();
   return res;
 }

@@ -92,6 +92,9 @@ struct ConstructOptions {
   //! so the tests reach the fallback attempts and the budget on small inputs (the hidden
   //! `construct --inject-failure attempt-N`).
   int inject_failed_attempts = 0;
+  //! Testing only: the first this many attempts that certify are refused as not certified
+  //! (`construct --inject-failure uncertified-attempt-N`).
+  int inject_uncertified_attempts = 0;
 };
 
 //! The attempts construct plans: the compactness schedule (1, then the retry factors) on the

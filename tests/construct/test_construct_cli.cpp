@@ -231,22 +231,38 @@ void expect_certified_map(const fs::path& out) {
   EXPECT_TRUE(d.valid()) << (d.failures.empty() ? "" : d.failures.front());
 }
 
-// Every small shape certifies in the first attempt, so `--inject-failure attempt-1` counts the
-// first one as failed: the construction goes on with the next attempt of its plan, says so on
-// stderr, and the report names the attempt that gave the map and what was tried before.
-TEST(ConstructCli, AFailedAttemptFallsBackToTheNextAndTheReportNamesBoth) {
-  const fs::path dir = temp_dir("fallback_attempt");
+//! Construct the box with `injection`: the map must come from the second attempt, certified,
+//! the report naming it and, in `tried`, the first attempt's failure; stderr announcing both.
+void expect_second_attempt_kept(const std::string& name, const std::string& injection,
+                                const std::string& tried) {
+  const fs::path dir = temp_dir(name);
   write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
-  const CliResult r = construct(dir / "box.obj", dir / "out", "--inject-failure attempt-1");
+  const CliResult r = construct(dir / "box.obj", dir / "out", "--inject-failure " + injection);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   expect_certified_map(dir / "out");
   const auto j = construct_report(dir / "out");
   EXPECT_TRUE(j["certified"].get<bool>());
   EXPECT_EQ(j["attempts"].get<int>(), 2);
   EXPECT_NE(j["attempt"].get<std::string>(), "compactness 1");
-  EXPECT_EQ(j["tried"].get<std::string>(), "compactness 1: injected failure");
+  EXPECT_EQ(j["tried"].get<std::string>(), tried);
   EXPECT_NE(r.err.find("construct attempt 1/"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("construct attempt 2/"), std::string::npos) << r.err;
+}
+
+// Every small shape certifies in the first attempt, so `--inject-failure attempt-1` counts the
+// first one as failed: the construction goes on with the next attempt of its plan, says so on
+// stderr, and the report names the attempt that gave the map and what was tried before.
+TEST(ConstructCli, AFailedAttemptFallsBackToTheNextAndTheReportNamesBoth) {
+  expect_second_attempt_kept("fallback_attempt", "attempt-1", "compactness 1: injected failure");
+}
+
+// An attempt whose tets are all positive and whose triangles all face their labels can still
+// fail the certification (its polycube boundary crossing itself elsewhere). The plan then goes on
+// to the next attempt instead of stopping with that one: `--inject-failure uncertified-attempt-1`
+// refuses the first attempt's certificate.
+TEST(ConstructCli, AnAttemptThatFailsCertificationFallsBackToTheNext) {
+  expect_second_attempt_kept("fallback_uncertified", "uncertified-attempt-1",
+                             "compactness 1: not certified: injected failure");
 }
 
 // Past the time limit no new attempt starts: the best attempt so far (here the first, whose
