@@ -257,8 +257,8 @@ void register_construct(CLI::App& app) {
   sub->add_option(
          "--inject-failure", opts->inject_failure,
          "Testing only: 'certify' treats the result as not certified, 'attempt-N' the first N "
-         "attempts as "
-         "failed, 'uncertified-attempt-N' the first N attempts that certify as not certified")
+         "attempts as failed, 'uncertified-attempt-N' the first N attempts that certify as not "
+         "certified")
       ->check(CLI::IsMember({"certify", "attempt-1", "attempt-2", "uncertified-attempt-1"}))
       ->group("");
   sub->callback([opts] {

@@ -334,18 +334,23 @@ double attempt_deadline(double time_limit, double now, bool others_left) {
 core::PolycubeMap map_of(const DeformResult& d, const core::TetMesh& input,
                          const AxisRotation& rotation);
 
-//! Certify an attempt judged valid, on its map as it will be written (the input's frame). Every
-//! tet positive and every boundary triangle facing its label do not keep the polycube's
-//! boundary from crossing itself elsewhere; such an attempt is not valid, and the plan goes on
-//! to the next one rather than stopping with it.
-void certify_attempt(AttemptResult& r, const core::TetMesh& input, const ConstructOptions& o,
-                     bool inject_failure, ConstructResult& res) {
+//! The attempt's map as it will be written (the input's frame) and its certificate.
+void certify_map(AttemptResult& r, const core::TetMesh& input, const ConstructOptions& o,
+                 ConstructResult& res) {
   const core::Stopwatch clock;
   const DeformResult& d = *r.deformation;
   r.map = map_of(d, input, res.axis_rotation);
   r.certificate = certify_polycube_map(r.map, d.boundary, d.labels, o.certify);
-  if (inject_failure) r.certificate->failures.push_back("injected failure");
   res.seconds.certify += clock.seconds();
+}
+
+//! Certify an attempt judged valid. Every tet positive and every boundary triangle facing its
+//! label do not keep the polycube's boundary from crossing itself elsewhere; such an attempt is
+//! not valid, and the plan goes on to the next one rather than stopping with it.
+void certify_attempt(AttemptResult& r, const core::TetMesh& input, const ConstructOptions& o,
+                     bool inject_failure, ConstructResult& res) {
+  certify_map(r, input, o, res);
+  if (inject_failure) r.certificate->failures.push_back("injected failure");
   if (r.certificate->certified()) return;
   r.valid = false;
   r.failures = 1;
@@ -489,7 +494,7 @@ ConstructResult construct_from_prepared(const core::TetMesh& input, const Constr
   const Model model = rotated_model(input, o, res.axis_rotation);
   res.tip_corners = model.tips;
   std::vector<std::string> failures;
-  const std::optional<AttemptResult> kept =
+  std::optional<AttemptResult> kept =
       run_plan(plan_attempts(o), model, input, o, clock, res, failures);
   res.tried = joined(failures);
   if (!failures.empty()) core::logger().info("construct: failed attempts: {}", res.tried);
@@ -498,21 +503,17 @@ ConstructResult construct_from_prepared(const core::TetMesh& input, const Constr
     core::logger().warn("construct: no attempt was valid ({})", failure_summary(failures));
   report_attempt(*kept, res);
 
-  const core::Stopwatch certify_clock;
+  if (!kept->certificate) certify_map(*kept, input, o, res);  // valid attempts were in the plan
   const DeformResult& d = *kept->deformation;
-  if (kept->certificate) {  // certified (or refused) in the plan
-    res.map = kept->map;
-    res.certificate = *kept->certificate;
-  } else {
-    res.map = map_of(d, input, res.axis_rotation);
-    res.certificate = certify_polycube_map(res.map, d.boundary, d.labels, o.certify);
-  }
+  res.map = std::move(kept->map);
+  res.certificate = *kept->certificate;
   if (!res.certificate.certified())
     throw NotCertified("polycube map not certified: " + res.certificate.reason() +
                            (failures.empty() ? std::string() : " (attempts: " + failure_summary(failures) + ")"),
                        res.map, d.boundary, d.labels);
+  const core::Stopwatch describe_clock;
   describe(d, boundary_in_core_order(d, res.boundary, res.labels), res);
-  res.seconds.certify += certify_clock.seconds();
+  res.seconds.certify += describe_clock.seconds();
   res.seconds.total = clock.seconds();
   return res;
 }

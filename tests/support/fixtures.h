@@ -58,9 +58,7 @@ inline int count_set(const std::vector<std::uint8_t>& s) {
 }
 
 inline double tet_volume(const core::TetMesh& m, int c) {
-  const auto& t = m.cells[c];
-  const Vec3& p0 = m.points[t[0]];
-  return (m.points[t[1]] - p0).dot((m.points[t[2]] - p0).cross(m.points[t[3]] - p0)) / 6.0;
+  return tet_det(m.points, m.cells[c]) / 6.0;
 }
 
 //! Split every hex into 6 tets around its 0-6 diagonal (conforming for a structured grid);
