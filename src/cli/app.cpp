@@ -420,6 +420,24 @@ CLI::Option* add_coarse_edge_option(CLI::App& sub, construct::ConstructOptions& 
       ->check(cli::non_negative());
 }
 
+std::vector<CLI::Option*> add_decimation_options(CLI::App& sub, construct::ConstructOptions& o) {
+  sub.add_option("--max-triangles", o.max_triangles,
+                 "A surface of more triangles is decimated to --decimate-to triangles before the construction, no "
+                 "vertex moved farther than --decimation-tolerance: the construction's time grows with the triangles; "
+                 "the map is of the decimated solid, and run still fits the hex mesh to the full surface (0: never "
+                 "decimate)")
+      ->capture_default_str()
+      ->check(cli::non_negative());
+  return {sub.add_option("--decimate-to", o.decimate_to, "Triangles a surface over --max-triangles is decimated to")
+              ->capture_default_str()
+              ->check(CLI::PositiveNumber),
+          sub.add_option("--decimation-tolerance", o.decimation_tolerance,
+                         "How far a vertex of the decimated surface may be from the input, as a fraction of the "
+                         "bounding-box diagonal")
+              ->capture_default_str()
+              ->check(CLI::Range(1e-6, 0.05))};
+}
+
 void add_expert_options(CLI::App& sub, const std::vector<CLI::Option*>& expert) {
   for (CLI::Option* o : expert) o->group("");
   sub.add_flag_callback(

@@ -172,6 +172,10 @@ std::vector<CLI::Option*> add_repair_options(CLI::App& sub, repair::RepairOption
 //! --coarse-edge-ratio of construct and run (an expert option: the caller groups it).
 CLI::Option* add_coarse_edge_option(CLI::App& sub, construct::ConstructOptions& o);
 
+//! --max-triangles of construct and run; returns the expert options --decimate-to and
+//! --decimation-tolerance, which the caller groups.
+std::vector<CLI::Option*> add_decimation_options(CLI::App& sub, construct::ConstructOptions& o);
+
 //! Run the parsed application, mapping exceptions to exit codes and one-line messages (and,
 //! with --json, a JSON object `{"status": "failed", "exit_code", "error"}` on stdout unless the
 //! command already printed its own).

@@ -87,6 +87,11 @@ void run_construct(const ConstructCliOptions& o) {
                              {"triangles_after", r.coarse_refinement.triangles_after},
                              {"tip_corners", r.tip_corners}})
            : nlohmann::json(nullptr)},
+      {"surface_decimated",
+       r.decimation.done() ? nlohmann::json({{"triangles_before", r.decimation.triangles_before},
+                                             {"triangles_after", r.decimation.triangles_after},
+                                             {"tolerance", r.decimation.tolerance}})
+                           : nlohmann::json(nullptr)},
       {"refine", {{"split_edges", r.refine.split_edges}, {"split_tets", r.refine.split_tets}}},
       {"split_boundary_triangles", r.split_triangles},
       {"split_boundary_edges", r.split_edges},
@@ -124,7 +129,8 @@ void run_construct(const ConstructCliOptions& o) {
         {"conformal_max", r.conformal_max},
         {"volume_normalized", true}}},
       {"seconds",
-       {{"tetrahedralize", s.tetrahedralize},
+       {{"decimate", s.decimate},
+        {"tetrahedralize", s.tetrahedralize},
         {"predeform", s.predeform},
         {"label", s.label},
         {"repair", s.repair},
@@ -139,14 +145,20 @@ void run_construct(const ConstructCliOptions& o) {
         {"report", (dir / "report.json").string()}}}};
   io::write_text_atomic(dir / "report.json", j.dump(2) + "\n");
 
+  const std::string decimated =
+      r.decimation.done() ? fmt::format(" (of the surface decimated from {} to {} triangles)",
+                                        r.decimation.triangles_before, r.decimation.triangles_after)
+                          : "";
+  const std::string decimate_time = r.decimation.done() ? fmt::format("decimate {:.2f} s, ", s.decimate) : "";
   const std::string text = fmt::format(
-      "{}: certified polycube map, {} tets, {} charts, {} corners, fidelity {:.4f}\n"
+      "{}: certified polycube map, {} tets, {} charts, {} corners, fidelity {:.4f}{}\n"
       "isometric distortion avg {:.3f} max {:.3f}\n"
-      "time: tetrahedralize {:.2f} s, predeform {:.2f} s, label {:.2f} s, repair {:.2f} s, deform {:.2f} s, untangle {:.2f} s, "
-      "certify {:.2f} s, total {:.2f} s\n"
+      "time: {}tetrahedralize {:.2f} s, predeform {:.2f} s, label {:.2f} s, repair {:.2f} s, deform {:.2f} s, "
+      "untangle {:.2f} s, certify {:.2f} s, total {:.2f} s\n"
       "wrote {}",
-      o.input, r.map.num_tets(), r.charts, r.corners, r.fidelity, r.isometric_average, r.isometric_max,
-      s.tetrahedralize, s.predeform, s.label, s.repair, s.deform, s.untangle, s.certify, s.total, dir.string());
+      o.input, r.map.num_tets(), r.charts, r.corners, r.fidelity, decimated, r.isometric_average, r.isometric_max,
+      decimate_time, s.tetrahedralize, s.predeform, s.label, s.repair, s.deform, s.untangle, s.certify, s.total,
+      dir.string());
   print_result(j, text);
 }
 
@@ -163,9 +175,10 @@ void register_construct(CLI::App& app) {
                   "Output folder (model.mesh, polycube.mesh, labeling.txt, report.json)")
       ->required();
   auto& c = opts->construct;
-  sub->add_option("--quality", c.tetrahedralize.quality, "TetGen radius-edge ratio bound (0: none)")
-      ->capture_default_str()
-      ->check(cli::non_negative());
+  CLI::Option* tet_quality =
+      sub->add_option("--quality", c.tetrahedralize.quality, "TetGen radius-edge ratio bound (0: none)")
+          ->capture_default_str()
+          ->check(cli::non_negative());
   sub->add_option("--max-volume", c.tetrahedralize.max_volume,
                   "Resolution: largest tet volume as a fraction of the bounding-box volume (0: no bound)")
       ->capture_default_str()
@@ -192,7 +205,11 @@ void register_construct(CLI::App& app) {
                   "When certification fails, write the best attempt to this folder as uncertified_model.mesh and "
                   "uncertified_polycube.mesh (boundary labels as triangle references), for diagnosis");
   const std::vector<CLI::Option*> repair_expert = add_repair_options(*sub, opts->repair);
+  const std::vector<CLI::Option*> decimation = add_decimation_options(*sub, c);
   std::vector<CLI::Option*> expert = {
+      tet_quality,
+      decimation[0],
+      decimation[1],
       add_coarse_edge_option(*sub, c),
       sub->add_option("--predeform-retry", c.predeform_retry,
                       "When --predeform is 0, also plan the attempts on the model pre-deformed by this many "

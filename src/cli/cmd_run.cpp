@@ -84,6 +84,10 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
       {"isometric_max", known(r.isometric_max)},
       {"construct_attempt", r.construct_attempt},
       {"construct_attempts", known(r.construct_attempts)},
+      {"surface_decimated",
+       r.decimated_triangles > 0
+           ? nlohmann::json({{"triangles_before", r.input_triangles}, {"triangles_after", r.decimated_triangles}})
+           : nlohmann::json(nullptr)},
       {"coarse_surface_refined",
        r.coarse_levels > 0 ? nlohmann::json({{"levels", r.coarse_levels},
                                            {"triangles", r.coarse_triangles},
@@ -176,6 +180,8 @@ std::string summary_table(const pipeline::RunResult& r) {
       what = fmt::format("{} tets, {} charts, {} corners, isometric avg {} max {}; {} ({} attempt(s) run)", r.tets,
                          r.charts, r.corners, figure(r.isometric_average), figure(r.isometric_max),
                          r.construct_attempt, r.construct_attempts) +
+             (r.decimated_triangles > 0 ? fmt::format("; the surface decimated from {} to {} triangles",
+                                                      r.input_triangles, r.decimated_triangles) : "") +
              (r.coarse_levels > 0 ? fmt::format("; the coarse surface split to {} triangles, {} sharp tips made corners",
                                                  r.coarse_triangles, r.coarse_tip_corners) : "");
     else if (s.name == "simplify")
@@ -307,6 +313,7 @@ void register_run(CLI::App& app) {
                   "tried (0: no limit, and the result does not depend on the machine's speed)")
       ->capture_default_str()
       ->check(cli::non_negative());
+  const std::vector<CLI::Option*> decimation = add_decimation_options(*sub, c);
   CLI::Option* coarse = add_coarse_edge_option(*sub, c);
   sub->add_option("--lambda-min", opts->run.simplify_options.align.lambda_min,
                   "Simplification: stop before an iteration whose lambda is below this (0: until convergence)")
@@ -322,6 +329,7 @@ void register_run(CLI::App& app) {
   opts->command = sub;
   std::vector<CLI::Option*> expert = add_repair_options(*sub, opts->run.repair);
   expert.insert(expert.begin(), coarse);
+  expert.insert(expert.begin(), decimation.begin(), decimation.end());
   add_expert_options(*sub, expert);
   sub->callback([opts] { run_run(*opts); });
 }

@@ -569,9 +569,7 @@ std::optional<core::TriMesh> refined_coarse_surface(const core::TriMesh& surface
   return finer;
 }
 
-}  // namespace
 
-namespace {
 
 //! What the user can do about a labeling that failed, when the shape says: a solid much thinner
 //! than it is wide (a slab of 1 x 1 x 1e-6) leaves its sides too narrow for charts of their own.
@@ -595,9 +593,11 @@ std::string labeling_hint(const core::TriMesh& surface, const SurfaceRefinement&
   return hint;
 }
 
-}  // namespace
 
-ConstructResult construct_polycube(const core::TriMesh& surface, const ConstructOptions& o) {
+
+//! The construction of a surface at the resolution it is given: refined first when it is too
+//! coarse to label (coarse_surface.h).
+ConstructResult construct_surface(const core::TriMesh& surface, const ConstructOptions& o) {
   const core::Stopwatch clock;
   SurfaceRefinement done;
   std::optional<core::TriMesh> finer;
@@ -637,6 +637,34 @@ ConstructResult construct_polycube(const core::TriMesh& surface, const Construct
                           done.triangles_after);
     }
   }
+}
+
+//! The input surface, or the surface decimated when it is finer than the construction needs.
+std::optional<core::TriMesh> decimated_for_construction(const core::TriMesh& surface, const ConstructOptions& o,
+                                                        SurfaceDecimation& done) {
+  const double tolerance = o.decimation_tolerance * core::bounding_box(surface.points).extent().norm();
+  if (o.max_triangles <= 0 || static_cast<int>(surface.num_cells()) <= o.max_triangles) return std::nullopt;
+  std::optional<core::TriMesh> decimated =
+      decimate_surface(surface, std::min(o.decimate_to, o.max_triangles), tolerance, done);
+  if (decimated)
+    core::logger().info(
+        "construct: the surface has {} triangles, more than the construction needs: decimated to {} (no vertex "
+        "farther than {:.3g} from it, {:.2g} of the diagonal; {:.1f} s); the map is of the decimated solid "
+        "(--max-triangles)",
+        done.triangles_before, done.triangles_after, done.tolerance, o.decimation_tolerance, done.seconds);
+  return decimated;
+}
+
+}  // namespace
+
+ConstructResult construct_polycube(const core::TriMesh& surface, const ConstructOptions& o) {
+  SurfaceDecimation decimation;
+  const std::optional<core::TriMesh> decimated = decimated_for_construction(surface, o, decimation);
+  ConstructResult res = construct_surface(decimated ? *decimated : surface, o);
+  res.decimation = decimation;
+  res.seconds.decimate = decimation.seconds;
+  res.seconds.total += decimation.seconds;
+  return res;
 }
 
 ConstructResult construct_polycube(core::TetMesh mesh, const ConstructOptions& o) {

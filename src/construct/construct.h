@@ -7,6 +7,7 @@
 #include "construct/certify.h"
 #include "construct/coarse_surface.h"
 #include "construct/deform.h"
+#include "construct/fine_surface.h"
 #include "construct/labeling.h"
 #include "construct/labeling_repair.h"
 #include "construct/orientation.h"
@@ -78,6 +79,16 @@ struct ConstructOptions {
   //! Surface inputs: when TetGen's mesh (without a volume bound) has fewer tets than this, the
   //! surface is tetrahedralized again with a volume bound asking for about this many (0: never).
   int min_tets = 10000;
+  //! Surface inputs: a surface of more triangles than `max_triangles` is decimated to
+  //! `decimate_to` triangles before the tetrahedralization (fine_surface.h; 0: never), no vertex
+  //! of the result farther from it than `decimation_tolerance` times its bounding-box diagonal.
+  //! A hex mesh of H hexes has about 6 H^(2/3) boundary faces: 20,000 triangles are over four per
+  //! face at 20,000 hexes. Only surfaces at least twice that fine are decimated: on a surface
+  //! near the count the collapses would save little, and every collapse changes the labeling's
+  //! input.
+  int max_triangles = 40000;
+  int decimate_to = 20000;
+  double decimation_tolerance = 1e-3;
   //! Surface inputs: when no attempt reaches a valid labeling and an edge is longer than the
   //! bounding-box diagonal over this, every triangle is split into four until none is, and the
   //! construction starts again (coarse_surface.h; 0: never).
@@ -106,6 +117,7 @@ std::vector<Attempt> plan_attempts(const ConstructOptions& options);
 
 //! Wall time of each stage (seconds).
 struct ConstructTimes {
+  double decimate = 0;        //!< decimation of a surface finer than needed (fine_surface.h)
   double tetrahedralize = 0;  //!< TetGen + boundary refinement (or input preparation)
   double predeform = 0;       //!< normal-driven pre-deformation
   double label = 0;           //!< graph-cut labeling
@@ -147,6 +159,7 @@ struct ConstructResult {
   double conformal_max = 0;
   ConstructTimes seconds;
   SurfaceRefinement coarse_refinement;  //!< surface inputs too coarse for the labeling (levels 0: none)
+  SurfaceDecimation decimation;         //!< surface inputs finer than needed: the map is of the decimated solid
   int tip_corners = 0;                  //!< sharp tips made polycube corners (ConstructOptions::tip_corners)
 };
 

@@ -180,6 +180,7 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   run.stage("input", [&] {
     in = read_construct_input(input, o.repair);
     r.repairs = in.repairs;
+    if (in.surface) r.input_triangles = static_cast<int>(in.surface->num_cells());
   });
 
   // 2. construction
@@ -189,6 +190,7 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
     r.tets = c.map.num_tets();
     r.construct_attempt = c.attempt.name();
     r.construct_attempts = c.attempts;
+    r.decimated_triangles = c.decimation.triangles_after;
     r.coarse_levels = c.coarse_refinement.levels;
     if (c.coarse_refinement.levels > 0) r.coarse_triangles = c.coarse_refinement.triangles_after;
     r.coarse_tip_corners = c.tip_corners;

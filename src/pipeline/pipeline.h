@@ -116,6 +116,8 @@ struct RunResult {
   double isometric_average = -1, isometric_max = -1;
   std::string construct_attempt;       //!< the construction attempt whose map was kept
   int construct_attempts = -1;         //!< attempts deformed
+  int input_triangles = -1;            //!< triangles of the surface input (-1: a tet mesh)
+  int decimated_triangles = 0;         //!< the surface decimated for the construction to this many (0: not)
   int coarse_levels = 0;               //!< times a surface too coarse to label was split into four
   int coarse_triangles = -1;           //!< its triangles after that (-1: not refined)
   int coarse_tip_corners = 0;          //!< its sharp tips made polycube corners

@@ -1,6 +1,7 @@
 // Tests of construct/: tetrahedralization + refinement, graph-cut labeling, validity repair.
 // Validity is judged by the independent validator in validator.h, not by labeling_check.
 #include "construct/coarse_surface.h"
+#include "construct/fine_surface.h"
 #include "construct/construct.h"
 #include "construct/labeling.h"
 #include "construct/labeling_check.h"
@@ -14,6 +15,7 @@
 
 #include "construct/pipeline.h"
 #include "construct/validator.h"
+#include "support/fixtures.h"
 #include "support/shapes.h"
 
 #include <gtest/gtest.h>
@@ -469,6 +471,86 @@ TEST(CoarseSurface, SplittingKeepsTheSurfaceWhereItWasAndHalvesEveryEdge) {
   const core::TriMesh capped = construct::subdivide_to(w, 1e-3, 100, done);
   EXPECT_EQ(done.levels, 1);
   EXPECT_EQ(capped.num_cells(), 32);
+}
+
+// --- fine surfaces: decimated within a tolerance ----------------------------------------------
+
+TEST(FineSurface, ADenseSphereIsDecimatedWithinTheToleranceAndStaysAClosedOrientedSurface) {
+  const core::TriMesh dense = test::sphere(5);  // 8,192 triangles on the unit sphere
+  const double tolerance = 0.01;
+  construct::SurfaceDecimation done;
+  const std::optional<core::TriMesh> coarse = construct::decimate_surface(dense, 1000, tolerance, done);
+  ASSERT_TRUE(coarse.has_value());
+  EXPECT_TRUE(done.done());
+  EXPECT_EQ(done.triangles_before, 8192);
+  EXPECT_EQ(done.triangles_after, coarse->num_cells());
+  EXPECT_LE(coarse->num_cells(), 1000);
+  EXPECT_GE(coarse->num_cells(), 500);  // the tolerance allows 1,000 on a sphere; it stops at the count
+  EXPECT_DOUBLE_EQ(done.tolerance, tolerance);
+  const auto report = core::analyze_surface(*coarse);
+  EXPECT_TRUE(report.closed);
+  EXPECT_TRUE(report.manifold);
+  EXPECT_TRUE(report.consistently_oriented);
+  EXPECT_EQ(report.euler_characteristic, 2);
+  EXPECT_EQ(report.degenerate_faces, 0);
+  // The input lies between the unit sphere and its chords (sagitta < 1e-3 at this level), so a
+  // point within the tolerance of it is within tolerance + sagitta of the unit sphere.
+  for (const core::Vec3& p : coarse->points) EXPECT_NEAR(p.norm(), 1.0, tolerance + 1e-3) << p.transpose();
+  EXPECT_GT(core::signed_volume(*coarse), 0.0);
+  EXPECT_NEAR(core::signed_volume(*coarse), core::signed_volume(dense), 0.02 * core::signed_volume(dense));
+  // Deterministic.
+  construct::SurfaceDecimation again;
+  const std::optional<core::TriMesh> twice = construct::decimate_surface(dense, 1000, tolerance, again);
+  ASSERT_TRUE(twice.has_value());
+  EXPECT_EQ(twice->points, coarse->points);
+  EXPECT_EQ(twice->cells, coarse->cells);
+}
+
+TEST(FineSurface, ASurfaceWithinTheCountIsNotTouched) {
+  construct::SurfaceDecimation done;
+  EXPECT_FALSE(construct::decimate_surface(test::sphere(3), 512, 0.01, done).has_value());  // 512 triangles
+  EXPECT_FALSE(construct::decimate_surface(test::sphere(3), 0, 0.01, done).has_value());    // 0: never
+  EXPECT_FALSE(done.done());
+}
+
+TEST(FineSurface, TheToleranceKeepsABoxsCornersAndFlatFacesCollapse) {
+  const core::TriMesh dense = test::make_box(10, 4, 2, 16);  // 3,072 triangles
+  const double tolerance = 1e-3 * std::sqrt(120.0);
+  construct::SurfaceDecimation done;
+  const std::optional<core::TriMesh> coarse = construct::decimate_surface(dense, 100, tolerance, done);
+  ASSERT_TRUE(coarse.has_value());
+  EXPECT_LE(coarse->num_cells(), 100);
+  const core::BoundingBox box = core::bounding_box(coarse->points);
+  EXPECT_TRUE(box.min.isZero(tolerance)) << box.min.transpose();
+  EXPECT_TRUE((box.max - core::Vec3(10, 4, 2)).isZero(tolerance)) << box.max.transpose();
+  // Every vertex stays on the box's surface: within the tolerance of one of its faces.
+  for (const core::Vec3& p : coarse->points) {
+    const core::Vec3 inside = p.cwiseMin(core::Vec3(10, 4, 2) - p);  // distances to the 6 faces
+    EXPECT_LE(inside.minCoeff(), tolerance) << p.transpose();
+  }
+  EXPECT_NEAR(core::signed_volume(*coarse), 80.0, 80.0 * 1e-2);
+}
+
+TEST(FineSurface, ConstructDecimatesADenseSurfaceAndCertifiesTheMapOfTheDecimatedSolid) {
+  construct::ConstructOptions o;
+  o.min_tets = 2000;
+  o.max_triangles = 1000;
+  o.decimate_to = 800;
+  o.decimation_tolerance = 0.01;  // the default 1e-3 allows no collapse on so coarse a sphere
+  const core::TriMesh dense = test::sphere(4);  // 2,048 triangles
+  const construct::ConstructResult r = construct::construct_polycube(dense, o);
+  EXPECT_TRUE(r.certificate.certified());
+  ASSERT_TRUE(r.decimation.done());
+  EXPECT_EQ(r.decimation.triangles_before, 2048);
+  EXPECT_LE(r.decimation.triangles_after, 800);
+  EXPECT_NEAR(r.decimation.tolerance, o.decimation_tolerance * core::bounding_box(dense.points).extent().norm(), 1e-12);
+  EXPECT_GT(r.seconds.decimate, 0.0);
+  // The map's model is the decimated solid, within the tolerance of the sphere.
+  for (const core::Vec3& p : r.map.model_mesh().points)
+    EXPECT_LE(p.norm(), 1.0 + r.decimation.tolerance) << p.transpose();
+  // Not decimated when asked not to.
+  o.max_triangles = 0;
+  EXPECT_FALSE(construct::construct_polycube(dense, o).decimation.done());
 }
 
 TEST(CoarseSurface, AWedgeAndAPyramidConstructOnceRefinedAndNotOtherwise) {

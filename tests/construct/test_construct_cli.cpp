@@ -291,12 +291,40 @@ std::vector<std::string> listed_options(const std::string& help) {
   return options;
 }
 
+// A surface finer than --max-triangles is decimated before the construction, and the report and
+// the summary say so; the map's boundary is the decimated surface (refined only by the
+// construction's own splits), within the tolerance of the input. (A surface under the count is
+// left alone: FineSurface tests in test_construct.cpp.)
+TEST(ConstructCli, ASurfaceFinerThanMaxTrianglesIsDecimatedAndTheReportSaysSo) {
+  const fs::path dir = temp_dir("decimate");
+  const core::TriMesh dense = test::make_sphere(1.0, 32, 64);  // 3,968 triangles
+  write_surface(dir / "sphere.obj", dense);
+  const CliResult r =
+      construct(dir / "sphere.obj", dir / "out", "--max-triangles 3000 --decimate-to 2000 --decimation-tolerance 0.005");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("of the surface decimated from 3968 to"), std::string::npos) << r.out;
+  std::ifstream jf(dir / "out" / "report.json");
+  const auto j = nlohmann::json::parse(jf);
+  EXPECT_TRUE(j["certified"].get<bool>());
+  ASSERT_TRUE(j["surface_decimated"].is_object()) << j.dump(2);
+  EXPECT_EQ(j["surface_decimated"]["triangles_before"].get<int>(), dense.num_cells());
+  const int after = j["surface_decimated"]["triangles_after"].get<int>();
+  EXPECT_LE(after, 2000);
+  EXPECT_GT(after, 0);
+  EXPECT_NEAR(j["surface_decimated"]["tolerance"].get<double>(), 0.005 * core::bounding_box(dense.points).diagonal(),
+              1e-9);
+  const core::PolycubeMap map = io::read_polycube_map(dir / "out" / "model.mesh", dir / "out" / "polycube.mesh");
+  EXPECT_GE(static_cast<int>(core::boundary(map.model_mesh()).surface.num_cells()), after);
+  const double tolerance = j["surface_decimated"]["tolerance"].get<double>();
+  for (const core::Vec3& p : map.model_mesh().points) EXPECT_LE(p.norm(), 1.0 + tolerance) << p.transpose();
+}
+
 TEST(ConstructCli, HelpShowsTheUserOptionsAndHelpExpertTheRest) {
   const CliResult user = test::run_cli("construct --help");
   ASSERT_EQ(user.exit_code, 0) << user.err;
   const std::vector<std::string> shown = listed_options(user.out);
   EXPECT_LE(shown.size(), 12u) << user.out;
-  for (const char* o : {"--compactness", "--predeform", "--time-limit", "--keep-failed", "--help-expert"})
+  for (const char* o : {"--compactness", "--predeform", "--time-limit", "--keep-failed", "--max-triangles", "--help-expert"})
     EXPECT_NE(user.out.find(o), std::string::npos) << o;
   for (const char* o : {"--iterations", "--flow", "--untangle-first", "--inject-failure"})
     EXPECT_EQ(user.out.find(o), std::string::npos) << o << " is an expert or test option";
@@ -305,7 +333,8 @@ TEST(ConstructCli, HelpShowsTheUserOptionsAndHelpExpertTheRest) {
   ASSERT_EQ(expert.exit_code, 0) << expert.err;
   EXPECT_NE(expert.out.find("Expert options:"), std::string::npos);
   for (const char* o : {"--iterations", "--volume-weight", "--refine-rounds", "--no-boundary-first", "--untangle-first",
-                        "--flow", "--predeform-retry", "--straighten", "--unfold-moves"})
+                        "--flow", "--predeform-retry", "--straighten", "--unfold-moves", "--quality", "--decimate-to",
+                        "--decimation-tolerance"})
     EXPECT_NE(expert.out.find(o), std::string::npos) << o;
   EXPECT_EQ(expert.out.find("--inject-failure"), std::string::npos);
   EXPECT_GT(listed_options(expert.out).size(), shown.size());

@@ -424,6 +424,41 @@ TEST(RunCli, ATetrahedronRunsThroughWithItsTipsMadeCorners) {
   EXPECT_GT(j["final"]["msj"].get<double>(), 0.0);
 }
 
+// A surface finer than --max-triangles is decimated for the construction; the hex mesh is still
+// fitted to, and its distance measured against, the input surface.
+TEST(RunCli, AFineSurfaceIsDecimatedForTheConstructionAndTheMeshFitsTheInput) {
+  const fs::path dir = temp_dir("decimated");
+  const core::TriMesh sphere = test::make_sphere(1.0, 32, 64);  // 3,968 triangles
+  write_surface(dir / "sphere.obj", sphere);
+  const CliResult r = run(dir / "sphere.obj", dir / "out",
+                          "--hexes 500 --padding none --max-triangles 3000 --decimate-to 300 --decimation-tolerance 0.02");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("the surface decimated from 3968 to"), std::string::npos) << r.out;
+  const auto j = read_report(dir / "out");
+  EXPECT_EQ(j["surface_decimated"]["triangles_before"], 3968) << j["surface_decimated"];
+  EXPECT_LE(j["surface_decimated"]["triangles_after"].get<int>(), 300) << j["surface_decimated"];
+  EXPECT_EQ(j["final"]["inverted"], 0);
+  EXPECT_LE(j["final"]["hausdorff_relative"].get<double>(), 0.009);
+  // The construction's solid is the decimated one: its triangles cut chords well inside the
+  // sphere. The final mesh's boundary is fitted to the input sphere instead: on average its
+  // vertices are on it.
+  const core::PolycubeMap map = io::read_polycube_map(dir / "out" / "construct" / "model.mesh",
+                                                      dir / "out" / "construct" / "polycube.mesh");
+  const core::TetBoundary model = core::boundary(map.model_mesh());
+  double model_centroids = 0.0;
+  for (const core::Tri& t : model.surface.cells)
+    model_centroids +=
+        (model.surface.points[t[0]] + model.surface.points[t[1]] + model.surface.points[t[2]]).norm() / 3.0;
+  model_centroids /= static_cast<double>(model.surface.num_cells());
+  EXPECT_LT(model_centroids, 0.997);
+  const core::HexMesh hex = core::hexes_of(io::read_mesh(dir / "out" / "hex.mesh"));
+  const core::QuadMesh skin = core::boundary(hex).surface;
+  double mean = 0.0;
+  for (const core::Vec3& p : skin.points) mean += p.norm();
+  mean /= static_cast<double>(skin.points.size());
+  EXPECT_NEAR(mean, 1.0, 2e-3);
+}
+
 // No small input makes the simplification (nor, below, the optimization and the quality stage)
 // fail reliably: a failure there is a limitation of the algorithm that the algorithm's work
 // keeps moving. The hidden --inject-failure STAGE (pipeline.h) makes the stage fail at its start
