@@ -1,13 +1,12 @@
 //! The repairs built on CGAL (see geometry_repairs.h).
 #include "repair/geometry_repairs.h"
 
+#include "core/cgal_surface_mesh.h"
 #include "core/topology.h"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
-#include <CGAL/Surface_mesh.h>
 #include <CGAL/alpha_wrap_3.h>
 
 #include <algorithm>
@@ -21,37 +20,11 @@ namespace polycube::repair::detail {
 namespace {
 
 namespace PMP = CGAL::Polygon_mesh_processing;
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
+using Kernel = core::cgal::Kernel;
+using SurfaceMesh = core::cgal::SurfaceMesh;
 
-//! The mesh as a CGAL surface mesh, vertex and face numbers kept; nullopt when a triangle
-//! cannot be attached (not manifold, or not consistently oriented).
-std::optional<SurfaceMesh> to_surface_mesh(const core::TriMesh& m) {
-  SurfaceMesh sm;
-  std::vector<SurfaceMesh::Vertex_index> v;
-  v.reserve(m.points.size());
-  for (const core::Vec3& p : m.points) v.push_back(sm.add_vertex({p.x(), p.y(), p.z()}));
-  for (const core::Tri& t : m.cells)
-    if (sm.add_face(v[t[0]], v[t[1]], v[t[2]]) == SurfaceMesh::null_face()) return std::nullopt;
-  return sm;
-}
-
-core::TriMesh to_tri_mesh(const SurfaceMesh& sm) {
-  core::TriMesh m;
-  std::vector<int> id(sm.number_of_vertices() + sm.number_of_removed_vertices(), -1);
-  for (auto v : sm.vertices()) {
-    id[v.idx()] = static_cast<int>(m.points.size());
-    const auto& p = sm.point(v);
-    m.points.emplace_back(p.x(), p.y(), p.z());
-  }
-  for (auto f : sm.faces()) {
-    core::Tri t{};
-    int k = 0;
-    for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) t[static_cast<std::size_t>(k++)] = id[v.idx()];
-    m.cells.push_back(t);
-  }
-  return m;
-}
+using core::cgal::to_surface_mesh;
+using core::cgal::to_tri_mesh;
 
 //! Whether every closed component encloses a positive volume and there is one component: then
 //! the surface bounds its volume as it is (the common case, decided without CGAL).
