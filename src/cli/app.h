@@ -72,6 +72,10 @@ void setup_logging_and_progress();
 //! Apply --threads for the rest of the process (call once, after parsing).
 void limit_threads();
 
+//! Let the allocator keep freed memory for reuse instead of returning it to the system and
+//! faulting it in again (call first in main).
+void keep_freed_memory();
+
 //! `--config FILE` (read settings from a TOML file, as --save-config writes them; the command
 //! line wins) and `--save-config FILE` on the top app.
 void add_config_options(CLI::App& app);

@@ -3,6 +3,7 @@
 
 int main(int argc, char** argv) {
   using namespace polycube::cli;
+  keep_freed_memory();
   install_interrupt_handler();
   CLI::App app{
       "polycube: polycube maps, coarse block layouts, hex and quad meshes, fabrication.\n"

@@ -56,14 +56,24 @@ std::string status_text(int status) {
 //! input gave other maps on one thread than on two. Run the BLAS (and OpenMP) on one thread,
 //! so results do not depend on the machine's cores; our own parallel loops (TBB) are
 //! deterministic. Its idle threads also spin, which slowed two jobs side by side by 1.4x.
-//! Looked up by name, so that any BLAS links.
+//! CHOLMOD's own OpenMP loops (clearing its workspace and each supernode) ask for four threads
+//! with a num_threads clause, which omp_set_num_threads does not lower; those threads then
+//! spun beside ours after every loop (a fifth of the optimizer's time on a small mesh). With
+//! no active parallel level allowed, every region runs on the thread that opens it. The
+//! OpenMP settings belong to the calling thread, so each thread that factorizes makes them.
+//! Looked up by name, so that any BLAS and any OpenMP runtime link.
 void single_threaded_blas() {
+  using SetInt = void (*)(int);
+  const auto call = [](const char* name, int value) {
+    if (void* f = dlsym(RTLD_DEFAULT, name)) reinterpret_cast<SetInt>(f)(value);
+  };
   static std::once_flag once;
-  std::call_once(once, [] {
-    using SetThreads = void (*)(int);
-    for (const char* name : {"openblas_set_num_threads", "omp_set_num_threads"})
-      if (void* f = dlsym(RTLD_DEFAULT, name)) reinterpret_cast<SetThreads>(f)(1);
-  });
+  std::call_once(once, [&call] { call("openblas_set_num_threads", 1); });
+  thread_local bool openmp_set = false;
+  if (openmp_set) return;
+  openmp_set = true;
+  call("omp_set_num_threads", 1);
+  call("omp_set_max_active_levels", 0);
 }
 
 }  // namespace
@@ -108,6 +118,7 @@ void SparseSpdSolver::analyze(const Eigen::SparseMatrix<double>& A) {
 }
 
 bool SparseSpdSolver::factorize(const Eigen::SparseMatrix<double>& A) {
+  single_threaded_blas();  // this thread may not be the one that made the solver
   Impl& m = *impl_;
   if (!m.factor || m.n != A.rows()) analyze(A);
   cholmod_sparse s = view(A);

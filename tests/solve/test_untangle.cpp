@@ -14,7 +14,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <iterator>
 #include <random>
+#include <thread>
 
 namespace polycube {
 namespace {
@@ -116,6 +119,50 @@ TEST(SparseSpdSolver, SolvesAndRejectsIndefinite) {
   B.coeffRef(3, 3) = -10.0;
   EXPECT_FALSE(s.factorize(B));
   EXPECT_THROW((void)s.solve(b), core::SolverError);
+}
+
+//! Threads of this process now (Linux: one entry per thread in /proc/self/task).
+int process_threads() {
+  const std::filesystem::path tasks("/proc/self/task");
+  if (!std::filesystem::exists(tasks)) return -1;
+  return static_cast<int>(std::distance(std::filesystem::directory_iterator(tasks), {}));
+}
+
+TEST(SparseSpdSolver, FactorizesOnTheCallingThreadAlone) {
+  // A 7-point Laplacian on a 20^3 grid (plus a shift): large enough that CHOLMOD's supernodal
+  // factorization opens its OpenMP loops (clearing its workspace and every large supernode),
+  // which ask for four threads whatever omp_set_num_threads says. Run from a new thread, as
+  // a solver may be, so that the setting has to be made there too.
+  const int k = 20, n = k * k * k;
+  std::vector<Eigen::Triplet<double>> trip;
+  const auto id = [k](int x, int y, int z) { return (z * k + y) * k + x; };
+  for (int z = 0; z < k; ++z)
+    for (int y = 0; y < k; ++y)
+      for (int x = 0; x < k; ++x) {
+        trip.emplace_back(id(x, y, z), id(x, y, z), 6.1);
+        if (x + 1 < k) trip.emplace_back(id(x, y, z), id(x + 1, y, z), -1.0);
+        if (y + 1 < k) trip.emplace_back(id(x, y, z), id(x, y + 1, z), -1.0);
+        if (z + 1 < k) trip.emplace_back(id(x, y, z), id(x, y, z + 1), -1.0);
+      }
+  Eigen::SparseMatrix<double> A(n, n);  // upper triangle, as the solver reads it
+  A.setFromTriplets(trip.begin(), trip.end());
+  A.makeCompressed();
+  int before = 0, after = 0;
+  double residual = 0;
+  std::thread worker([&] {
+    before = process_threads();
+    solve::SparseSpdSolver s;
+    s.analyze(A);
+    ASSERT_TRUE(s.factorize(A));
+    const Eigen::VectorXd b = Eigen::VectorXd::Ones(n);
+    const Eigen::SparseMatrix<double> full = A.selfadjointView<Eigen::Upper>();
+    residual = (full * s.solve(b) - b).norm() / b.norm();
+    after = process_threads();
+  });
+  worker.join();
+  if (before < 0) GTEST_SKIP() << "no /proc/self/task to count threads";
+  EXPECT_LT(residual, 1e-10);
+  EXPECT_EQ(after, before) << "the factorization started threads of its own";
 }
 
 // --- untangling -------------------------------------------------------------------------------
