@@ -22,6 +22,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -310,6 +311,8 @@ struct Optimization {
   //! quality rounds (the retries keep the last round's).
   std::vector<double> multiplier;
   const OptimizeOptions& o;
+  //! The Newton system's pattern, shared by the runs on the same elements (solve/untangle.h).
+  std::shared_ptr<solve::PatternCache> pattern = solve::make_pattern_cache();
 
   [[nodiscard]] solve::TetElements elements() const {
     return corner_elements(mesh, lengths, multiplier);
@@ -360,6 +363,7 @@ solve::UntangleResult run(const Optimization& w, solve::UntangleOptions uo, bool
     uo.linear_solver = solve::NewtonSolver::ConjugateGradient;
     uo.cg_iterations = o.cg_iterations;
   }
+  uo.pattern_cache = w.pattern;
   uo.on_iteration = [&pb, centre_base](int, const Eigen::VectorXd& x, std::vector<solve::Attraction>& attr) {
     pb.project(x, attr, centre_base);
     return true;

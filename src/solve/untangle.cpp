@@ -81,6 +81,11 @@ Mat3 jacobian(const Grad& G, const Eigen::VectorXd& x, const std::array<int, 4>&
   return J;
 }
 
+}  // namespace
+
+// Outside the anonymous namespace: PatternCache (untangle.h) holds an Assembly.
+namespace detail {
+
 //! One reduction entry: local coordinate `local` of a term equals coef * y[col] (+ const).
 struct Entry {
   int local;
@@ -216,6 +221,59 @@ Assembly build_assembly(const TetElements& el, const LinearReduction& R,
   a.diag_slot.resize(a.n);
   for (int j = 0; j < a.n; ++j) a.diag_slot[j] = slot_of(j, j);
   return a;
+}
+
+}  // namespace detail
+
+//! The pattern of the last call, and what it was built from (UntangleOptions::pattern_cache).
+struct PatternCache {
+  std::vector<std::array<int, 4>> tets;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> B;
+  std::vector<int> attracted;
+  detail::Assembly assembly;
+  bool built = false;
+};
+
+std::shared_ptr<PatternCache> make_pattern_cache() { return std::make_shared<PatternCache>(); }
+
+namespace {
+
+using detail::Assembly;
+using detail::Entry;
+
+//! Same sparse matrix, entry for entry (structure and values).
+bool same_matrix(const Eigen::SparseMatrix<double, Eigen::RowMajor>& a,
+                 const Eigen::SparseMatrix<double, Eigen::RowMajor>& b) {
+  if (!a.isCompressed() || !b.isCompressed()) return false;  // raw arrays compare only then
+  if (a.rows() != b.rows() || a.cols() != b.cols() || a.nonZeros() != b.nonZeros()) return false;
+  const auto rows = static_cast<std::size_t>(a.rows()) + 1;
+  const auto nnz = static_cast<std::size_t>(a.nonZeros());
+  return std::equal(a.outerIndexPtr(), a.outerIndexPtr() + rows, b.outerIndexPtr()) &&
+         std::equal(a.innerIndexPtr(), a.innerIndexPtr() + nnz, b.innerIndexPtr()) &&
+         std::equal(a.valuePtr(), a.valuePtr() + nnz, b.valuePtr());
+}
+
+//! The pattern for these elements, reduction and attractions: the cache's when it was built
+//! from the same ones (the assembly depends on nothing else), else built (and kept there).
+const Assembly& pattern_for(const TetElements& el, const LinearReduction& R, const std::vector<Attraction>& attr,
+                            PatternCache* cache, Assembly& own) {
+  std::vector<int> attracted(attr.size());
+  for (std::size_t k = 0; k < attr.size(); ++k) attracted[k] = attr[k].vertex;
+  if (cache && cache->built && cache->tets == el.tets && cache->attracted == attracted && same_matrix(cache->B, R.B)) {
+    core::logger().debug("untangle: the pattern of the previous call");
+    return cache->assembly;
+  }
+  Assembly a = detail::build_assembly(el, R, attr);
+  if (!cache) {
+    own = std::move(a);
+    return own;
+  }
+  cache->tets = el.tets;
+  cache->B = R.B;
+  cache->attracted = std::move(attracted);
+  cache->assembly = std::move(a);
+  cache->built = true;
+  return cache->assembly;
 }
 
 struct Stats {
@@ -523,7 +581,8 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
   if (st.inverted == 0) eps = std::max(o.min_epsilon, std::min(eps, 1e-3 * std::max(st.min_det, 0.0)));
 
   const core::Stopwatch pattern_clock;
-  const Assembly A = build_assembly(el, R, attractions);
+  Assembly own;
+  const Assembly& A = pattern_for(el, R, attractions, o.pattern_cache.get(), own);
   core::logger().debug("untangle: {} unknowns, {} Hessian entries, pattern {:.2f} s", A.n, A.H.nonZeros(),
                        pattern_clock.seconds());
   Eigen::SparseMatrix<double> H = A.H;

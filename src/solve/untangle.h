@@ -31,6 +31,7 @@
 
 #include <array>
 #include <functional>
+#include <memory>
 #include <vector>
 
 namespace polycube::solve {
@@ -53,6 +54,11 @@ struct TetElements {
 //! \throw core::GeometryError when a reference tet is flat or negatively oriented
 TetElements reference_elements(const std::vector<core::Vec3>& points,
                                const std::vector<std::array<int, 4>>& tets, double scale = 1.0);
+
+//! The Newton system's sparsity pattern of one problem's structure, kept between calls
+//! (UntangleOptions::pattern_cache); make_pattern_cache() gives an empty one.
+struct PatternCache;
+std::shared_ptr<PatternCache> make_pattern_cache();
 
 //! Linear reduction x = B·y + x0 of the 3·#V coordinates (coordinate d of vertex v is row 3v+d).
 struct LinearReduction {
@@ -146,6 +152,11 @@ struct UntangleOptions {
   //! their vertices), e.g. to re-project vertices onto a surface. Return false to stop.
   std::function<bool(int iteration, const Eigen::VectorXd& x, std::vector<Attraction>& attractions)>
       on_iteration;
+  //! Where to keep the Newton system's sparsity pattern for the next call (make_pattern_cache;
+  //! null: built every call). A call on the same element vertices, reduction and attracted
+  //! vertices reuses it as it is: the quality rounds of one optimization, where building it
+  //! took a third of a round's time.
+  std::shared_ptr<PatternCache> pattern_cache;
 };
 
 //! Result of untangle().

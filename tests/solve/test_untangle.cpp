@@ -16,6 +16,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iterator>
+#include <memory>
 #include <random>
 #include <thread>
 
@@ -224,6 +225,37 @@ TEST(Untangle, FoldedVertexBecomesValidAndFixedCoordinatesStay) {
   double err = 0;
   for (int v = 0; v < ref.num_points(); ++v) err = std::max(err, (p[v] - ref.points[v]).norm());
   EXPECT_LT(err, 0.05);
+}
+
+// The pattern cache (UntangleOptions::pattern_cache) gives the same result bit for bit as a
+// call without it, and a call on another reduction of the same size (the variables numbered
+// the other way round) rebuilds it instead of taking the last one.
+TEST(Untangle, APatternCacheChangesNothingAndFollowsTheReduction) {
+  FoldedGrid g = folded_grid();
+  const core::TetMesh ref = test::tetrahedralize(test::hex_grid(3, 3, 3));
+  const Eigen::VectorXd x_init = solve::flatten(g.mesh.points);
+  std::vector<int> reversed = g.var;
+  for (int& v : reversed)
+    if (v >= 0) v = g.nvar - 1 - v;
+  const solve::TetElements el = solve::reference_elements(ref.points, ref.cells);
+  const auto solve_with = [&](const std::vector<int>& var, const std::shared_ptr<solve::PatternCache>& cache) {
+    const solve::LinearReduction R = solve::index_reduction(var, g.nvar, x_init);
+    Eigen::VectorXd y(g.nvar);
+    for (int i = 0; i < 3 * g.mesh.num_points(); ++i)
+      if (var[i] >= 0) y[var[i]] = x_init[i];
+    solve::UntangleOptions o;
+    o.pattern_cache = cache;
+    const solve::UntangleResult r = solve::untangle(el, R, y, o);
+    EXPECT_TRUE(r.untangled);
+    return R.apply(y);
+  };
+  const Eigen::VectorXd plain = solve_with(g.var, nullptr);
+  const Eigen::VectorXd plain_reversed = solve_with(reversed, nullptr);
+  const std::shared_ptr<solve::PatternCache> cache = solve::make_pattern_cache();
+  EXPECT_EQ(solve_with(g.var, cache), plain);  // built
+  EXPECT_EQ(solve_with(g.var, cache), plain);  // reused
+  EXPECT_EQ(solve_with(reversed, cache), plain_reversed);  // another reduction: built again
+  EXPECT_EQ(solve_with(g.var, cache), plain);
 }
 
 // A caller's budget (UntangleOptions::expired) ends the untangling after the iteration that
