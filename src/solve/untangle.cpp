@@ -588,6 +588,10 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
   Eigen::SparseMatrix<double> H = A.H;
   SparseSpdSolver solver;
   if (o.linear_solver == NewtonSolver::Cholesky) solver.analyze(H);
+  // The regularized copy that is factorized: H's pattern, allocated once (a new matrix every
+  // Newton step made the allocator fetch and return tens of MiB each time).
+  Eigen::SparseMatrix<double> Hr;
+  if (o.linear_solver == NewtonSolver::Cholesky) Hr = H;
   const int n = A.n;
   double damping = 0.0;
   double t_assemble = 0, t_factor = 0, t_search = 0;
@@ -601,6 +605,7 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
   constexpr int kBlock = 1024;
   std::array<std::vector<Mat12>, 2> Hl{std::vector<Mat12>(kBlock), std::vector<Mat12>(kBlock)};
   std::array<std::vector<Vec12>, 2> gl{std::vector<Vec12>(kBlock), std::vector<Vec12>(kBlock)};
+  Eigen::VectorXd g(n);  // the gradient, refilled every Newton step
   core::ProgressTask task("untangle", std::max(1, o.max_iterations));
   for (int outer = 0; outer < o.max_iterations; ++outer) {
     task.set(outer);
@@ -612,7 +617,7 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
       core::Stopwatch phase;
       double* hv = H.valuePtr();
       std::fill(hv, hv + H.nonZeros(), 0.0);
-      Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
+      g.setZero();
       const int T = el.size();
       // Elements in blocks: the derivatives of a block in parallel, then added into H and g in
       // element order (the same sums whatever the thread count). The adding is serial, so the
@@ -672,11 +677,10 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
       double reg = std::max(1e-9 * mean_diag, damping);
       Eigen::VectorXd dir;
       if (o.linear_solver == NewtonSolver::Cholesky) {
-        Eigen::SparseMatrix<double> Hr = H;
         bool ok = false;
         for (int attempt = 0; attempt < 12 && !ok; ++attempt) {
-          Hr = H;
           double* rv = Hr.valuePtr();
+          std::copy(hv, hv + H.nonZeros(), rv);
           for (int j = 0; j < n; ++j) rv[A.diag_slot[j]] += reg;
           ok = solver.factorize(Hr);
           if (!ok) reg *= 100.0;

@@ -8,7 +8,7 @@
 #include "simplify/simplify.h"
 #include "structure/structure.h"
 
-#include "construct/certifier.h"
+#include "support/certifier.h"
 #include "construct/validator.h"
 
 #include <gtest/gtest.h>

@@ -4,7 +4,7 @@
 #include "construct/certify.h"
 #include "construct/construct.h"
 #include "construct/deform.h"
-#include "construct/certifier.h"
+#include "support/certifier.h"
 #include "construct/labeling_check.h"
 #include "construct/labeling_repair.h"
 #include "construct/predeform.h"
@@ -16,7 +16,6 @@
 #include "support/shapes.h"
 
 #include <Eigen/Geometry>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -27,7 +26,6 @@ namespace polycube {
 namespace {
 
 using core::Vec3;
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 using test::independent_check;
 using test::Verdict;

@@ -13,12 +13,10 @@
 #include "quality/surface_distance.h"
 
 #include "cli/run_cli.h"
-#include "construct/certifier.h"
+#include "support/certifier.h"
+#include "support/exact_geometry.h"
 #include "support/scratch.h"
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <unistd.h>
@@ -33,23 +31,9 @@ namespace polycube {
 namespace {
 
 namespace fs = std::filesystem;
-using K = test::K;
+using test::farthest_from;
 
 constexpr double kHausdorffBound = 0.009;  // thesis §4.5
-
-//! Largest distance from the points to the surface (CGAL AABB tree, exact closest points).
-double farthest_from(const std::vector<core::Vec3>& points, const core::TriMesh& surface) {
-  std::vector<K::Triangle_3> tris;
-  auto P = [](const core::Vec3& p) { return K::Point_3(p.x(), p.y(), p.z()); };
-  for (const auto& t : surface.cells)
-    tris.emplace_back(P(surface.points[t[0]]), P(surface.points[t[1]]), P(surface.points[t[2]]));
-  using Primitive = CGAL::AABB_triangle_primitive<K, std::vector<K::Triangle_3>::const_iterator>;
-  CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>> tree(tris.cbegin(), tris.cend());
-  tree.accelerate_distance_queries();
-  double worst = 0;
-  for (const auto& p : points) worst = std::max(worst, std::sqrt(tree.squared_distance(P(p))));
-  return worst;
-}
 
 //! The map written under `dir` (model.mesh + polycube.mesh) passes the independent certifier.
 void expect_certified_map(const fs::path& dir, std::vector<core::Tet>* tets) {

@@ -5,10 +5,8 @@
 
 #include "core/errors.h"
 #include "core/topology.h"
+#include "support/exact_geometry.h"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/self_intersections.h>
-#include <CGAL/Surface_mesh.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -23,6 +21,7 @@ namespace {
 
 using polycube::core::TriMesh;
 using polycube::core::Vec3;
+using polycube::test::self_intersects;
 namespace samples = polycube::samples;
 constexpr double kPi = std::numbers::pi;
 
@@ -110,20 +109,6 @@ const TriMesh& sample(const std::string& name) {
   auto it = cache.find(name);
   if (it == cache.end()) it = cache.emplace(name, samples::make_sample(name)).first;
   return it->second;
-}
-
-bool self_intersects(const TriMesh& m) {
-  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-  CGAL::Surface_mesh<K::Point_3> sm;
-  std::vector<CGAL::Surface_mesh<K::Point_3>::Vertex_index> v;
-  for (const Vec3& p : m.points) v.push_back(sm.add_vertex(K::Point_3(p.x(), p.y(), p.z())));
-  for (const auto& t : m.cells) {
-    if (sm.add_face(v[t[0]], v[t[1]], v[t[2]]) == sm.null_face()) {
-      ADD_FAILURE() << "face cannot be added to a halfedge structure";
-      return true;
-    }
-  }
-  return CGAL::Polygon_mesh_processing::does_self_intersect(sm);
 }
 
 std::vector<std::string> names() {

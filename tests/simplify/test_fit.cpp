@@ -6,7 +6,7 @@
 #include "simplify/corner_alignment.h"
 #include "simplify/corner_system.h"
 #include "structure/structure.h"
-#include "construct/certifier.h"
+#include "support/certifier.h"
 #include "polycube_fixtures.h"
 
 #include <Eigen/Geometry>

@@ -1,28 +1,17 @@
-#pragma once
-// Independent certifier of polycube maps for the tests: exact orientation predicates (CGAL),
-// its own boundary extraction, bit-exact chart planes and exact facing; shares no code with
-// construct/certify.
-#include "core/types.h"
+#include "support/certifier.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
 #include <array>
 #include <map>
-#include <vector>
 
 namespace polycube::test {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using core::Vec3;
 
-// --- independent certifier (exact predicates, own boundary extraction) ------------------------
-
-struct Verdict {
-  int bad_model = 0, bad_polycube = 0, off_plane = 0, unlabeled = 0, boundary_faces = 0, wrong_facing = 0;
-};
-
-inline Verdict independent_check(const std::vector<core::Tet>& tets, const std::vector<Vec3>& model,
+Verdict independent_check(const std::vector<core::Tet>& tets, const std::vector<Vec3>& model,
                           const std::vector<Vec3>& poly, const std::vector<core::Tri>& tris,
                           const std::vector<int>& labels) {
   Verdict v;
@@ -78,8 +67,7 @@ inline Verdict independent_check(const std::vector<core::Tet>& tets, const std::
   return v;
 }
 
-//! True when the verdict accepts the map.
-inline bool certified(const Verdict& v) {
+bool certified(const Verdict& v) {
   return v.bad_model == 0 && v.bad_polycube == 0 && v.off_plane == 0 && v.unlabeled == 0 && v.wrong_facing == 0 &&
          v.boundary_faces > 0;
 }
