@@ -64,6 +64,7 @@ void run_optimize(const OptimizeCliOptions& o) {
   j["untangle"] = phase_json(r.untangle);
   j["quality"] = phase_json(r.quality);
   j["quality"]["rounds_kept"] = r.rounds_accepted;
+  j["quality"]["rounds_run"] = r.rounds_run;
   j["quality"]["drift_retries_kept"] = r.drift_retries;
   j["quality"]["fit_retry_kept"] = r.fit_retry;
   j["setup_seconds"] = r.setup.seconds;
@@ -133,6 +134,11 @@ void register_optimize(CLI::App& app) {
       ->check(cli::non_negative())
       ->capture_default_str();
   sub->add_option("--quality-rounds", oo.quality_rounds, "Quality rounds (each reweights the worst hexes)")
+      ->check(cli::non_negative())
+      ->capture_default_str();
+  sub->add_option("--quality-patience", oo.quality_patience,
+                  "The quality rounds stop once this many in a row were neither kept nor higher in mSJ than the "
+                  "round before them (0: all --quality-rounds run)")
       ->check(cli::non_negative())
       ->capture_default_str();
   sub->add_option("--quality-iterations", oo.quality_iterations, "Outer iterations per quality round at most")

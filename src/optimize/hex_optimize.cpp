@@ -385,7 +385,7 @@ void add(PhaseReport& p, const solve::UntangleResult& r) {
 
 void check_input(const core::HexMesh& mesh, const OptimizeOptions& o) {
   if (mesh.cells.empty()) throw core::InputError("hex mesh: no hexahedra");
-  if (!(o.surface_weight >= 0) || o.untangle_iterations < 0 || o.quality_rounds < 0 ||
+  if (!(o.surface_weight >= 0) || o.untangle_iterations < 0 || o.quality_rounds < 0 || o.quality_patience < 0 ||
       o.quality_iterations < 1 || !(o.volume_weight > 0) ||
       !(o.feature_angle > 0 && o.feature_angle < 180) || !(o.feature_distance > 0) ||
       !(o.drift_diagonal > 0) || !(o.hausdorff_bound > 0) || o.drift_retries < 0 ||
@@ -464,7 +464,18 @@ void weigh_worst_hexes(const quality::ScaledJacobianSummary& best,
 void quality_rounds(Optimization& w, const Start& start, double face_weight, Best& best,
                     OptimizeResult& res, core::ProgressTask* progress) {
   std::fill(w.multiplier.begin(), w.multiplier.end(), 1.0);
+  // Rounds not kept whose minimum did not rise above the round's before, in a row: a round not
+  // kept but higher than the one before is on its way (the weights grow each round).
+  int stalled = 0;
+  double previous_min = best.summary.min;
   for (int round = 0; round < w.o.quality_rounds; ++round) {
+    if (w.o.quality_patience > 0 && stalled >= w.o.quality_patience) {
+      core::logger().info("optimize: quality rounds stop: {} rounds in a row neither kept nor higher", stalled);
+      if (progress)
+        for (int rest = round; rest < w.o.quality_rounds; ++rest) progress->step();
+      break;
+    }
+    ++res.rounds_run;
     if (round > 0) weigh_worst_hexes(best.summary, w.multiplier);
     const solve::UntangleOptions uo = quality_options(w.o, w.o.quality_iterations);
     w.mesh.points = best.points;
@@ -484,6 +495,8 @@ void quality_rounds(Optimization& w, const Start& start, double face_weight, Bes
       best.points = w.mesh.points;
       ++res.rounds_accepted;
     }
+    stalled = better || s.min > previous_min ? 0 : stalled + 1;
+    previous_min = s.min;
     if (progress) progress->step();
   }
   w.mesh.points = best.points;

@@ -37,6 +37,11 @@ struct OptimizeOptions {
   int untangle_iterations = 200;  //!< outer iterations of the untangling phase at most
   int quality_rounds = 6;         //!< quality rounds (each reweights the worst hexes)
   int quality_iterations = 15;    //!< outer iterations per quality round at most
+  //! The quality rounds stop once this many in a row were neither kept nor higher in mSJ than
+  //! the round before them (0: all quality_rounds run). Each round weighs the same worst hexes
+  //! heavier: rounds that are not kept but climb may lead to one that is; rounds that fall
+  //! seldom do, and each costs as much as a kept one.
+  int quality_patience = 2;
   //! After an untangling phase, quality rounds may lower the average scaled Jacobian by this
   //! much (a valid input's average is never lowered).
   double average_slack = 0.01;
@@ -113,6 +118,7 @@ struct OptimizeResult {
   int target_feature_edges = 0;           //!< sharp edges found on the target
   int target_corners = 0;                 //!< corners found on the target
   int rounds_accepted = 0;                //!< quality rounds kept
+  int rounds_run = 0;                     //!< quality rounds run (quality_patience may stop them early)
   int drift_retries = 0;                  //!< optimizations run again for drifted boundary vertices
   bool fit_retry = false;                 //!< the fit retry (quad centres attracted) was kept
   PhaseReport setup, untangle, quality;

@@ -56,6 +56,25 @@ TEST(HexOptimize, TangledBoundaryUntanglesOnTheSurface) {
   EXPECT_LT(d.relative, 0.01);
 }
 
+// A grid of perfect cubes on its box: no quality round can raise the minimum (1), so none is
+// kept; with the default patience the rounds stop after two, and the mesh is the one all six
+// rounds give.
+TEST(HexOptimize, QualityRoundsStopAfterTwoRoundsInARowNotKept) {
+  core::HexMesh stopped = test::box_grid(4, 4, 4);
+  core::HexMesh all = stopped;
+  const core::TriMesh box = test::box_surface();
+  const auto r = optimize::optimize_hex_mesh(stopped, box);
+  EXPECT_EQ(r.rounds_accepted, 0);
+  EXPECT_EQ(r.rounds_run, 2);
+  optimize::OptimizeOptions o;
+  o.quality_patience = 0;
+  const auto r_all = optimize::optimize_hex_mesh(all, box, o);
+  EXPECT_EQ(r_all.rounds_accepted, 0);
+  EXPECT_EQ(r_all.rounds_run, o.quality_rounds);
+  EXPECT_EQ(stopped.points, all.points);
+  EXPECT_DOUBLE_EQ(r.after.min, 1.0);
+}
+
 TEST(HexOptimize, PerturbedBoxKeepsCornersAndEdges) {
   const int n = 6;
   const double h = 1.0 / n;
@@ -288,6 +307,9 @@ TEST(HexOptimize, BadInput) {
   optimize::OptimizeOptions f;
   f.face_attraction = -1;
   EXPECT_THROW(optimize::optimize_hex_mesh(g, test::box_surface(), f), core::InputError);
+  optimize::OptimizeOptions p;
+  p.quality_patience = -1;
+  EXPECT_THROW(optimize::optimize_hex_mesh(g, test::box_surface(), p), core::InputError);
 }
 
 // Done-when line of issue 8: the rockerarm optimized with its own boundary as target keeps
