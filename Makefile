@@ -33,7 +33,6 @@ test-heavy: build
 	@ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) --timeout 1200 -L heavy
 
 bench: build
-	@cmake --build $(BUILD) -j$(JOBS) --target bench_programs
 	@bench/run.sh $(BUILD)
 
 # make fuzz [FUZZ_SECONDS=60]: every reader's libFuzzer target for that long (build-fuzz/).

@@ -118,7 +118,7 @@ struct OptimizeResult {
   int target_feature_edges = 0;           //!< sharp edges found on the target
   int target_corners = 0;                 //!< corners found on the target
   int rounds_accepted = 0;                //!< quality rounds kept
-  int rounds_run = 0;                     //!< quality rounds run (quality_patience may stop them early)
+  int rounds_run = 0;  //!< quality rounds run, the fit retry's included (quality_patience may stop them early)
   int drift_retries = 0;                  //!< optimizations run again for drifted boundary vertices
   bool fit_retry = false;                 //!< the fit retry (quad centres attracted) was kept
   PhaseReport setup, untangle, quality;
