@@ -464,8 +464,8 @@ void weigh_worst_hexes(const quality::ScaledJacobianSummary& best,
 void quality_rounds(Optimization& w, const Start& start, double face_weight, Best& best,
                     OptimizeResult& res, core::ProgressTask* progress) {
   std::fill(w.multiplier.begin(), w.multiplier.end(), 1.0);
-  // Rounds not kept whose minimum did not rise above the round's before, in a row: a round not
-  // kept but higher than the one before is on its way (the weights grow each round).
+  // How many rounds in a row were neither kept nor higher in mSJ than the round before them. A
+  // round not kept but higher may lead to one that is (the worst hexes weigh more each round).
   int stalled = 0;
   double previous_min = best.summary.min;
   for (int round = 0; round < w.o.quality_rounds; ++round) {

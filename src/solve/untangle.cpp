@@ -588,8 +588,8 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
   Eigen::SparseMatrix<double> H = A.H;
   SparseSpdSolver solver;
   if (o.linear_solver == NewtonSolver::Cholesky) solver.analyze(H);
-  // The regularized copy that is factorized: H's pattern, allocated once (a new matrix every
-  // Newton step made the allocator fetch and return tens of MiB each time).
+  // The regularized copy that is factorized: H's pattern, so its arrays are allocated once per
+  // call and only the values are copied before each factorization attempt.
   Eigen::SparseMatrix<double> Hr;
   if (o.linear_solver == NewtonSolver::Cholesky) Hr = H;
   const int n = A.n;
