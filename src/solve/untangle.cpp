@@ -409,20 +409,23 @@ Mat9 project_psd(const Mat3& J, const Mat9& H, const EnergyTerms& t) {
   scaling.computeDirect(A);
   // H is the sum of λ q qᵀ over its 9 eigenpairs: subtracting the negative ones' terms (one to
   // three, usually) projects it at a fraction of the cost of summing the positive ones.
+  // The eigenvectors are formed only for the negative eigenvalues (most of the nine are not).
   Mat9 P = H;
   auto clamp = [&](double eigenvalue, const Mat3& Q) {
-    if (eigenvalue >= 0) return;
     const Vec9 q = vec(Q);
     P.noalias() -= eigenvalue * (q * q.transpose());
   };
   for (int i = 0; i < 3; ++i)
-    clamp(scaling.eigenvalues()[i], U * scaling.eigenvectors().col(i).asDiagonal() * V.transpose());
+    if (scaling.eigenvalues()[i] < 0)
+      clamp(scaling.eigenvalues()[i], U * scaling.eigenvectors().col(i).asDiagonal() * V.transpose());
   for (int z = 0; z < 3; ++z) {
+    const double flip = t.c0 - t.c3 * s[z], twist = t.c0 + t.c3 * s[z];
+    if (!(flip < 0) && !(twist < 0)) continue;
     const int a = (z + 1) % 3, b = (z + 2) % 3;
     const Mat3 ab = U.col(a) * V.col(b).transpose() * (std::numbers::sqrt2 / 2);
     const Mat3 ba = U.col(b) * V.col(a).transpose() * (std::numbers::sqrt2 / 2);
-    clamp(t.c0 - t.c3 * s[z], ab + ba);  // flip
-    clamp(t.c0 + t.c3 * s[z], ab - ba);  // twist
+    if (flip < 0) clamp(flip, ab + ba);
+    if (twist < 0) clamp(twist, ab - ba);
   }
   return P;
 }
@@ -612,6 +615,8 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
     ++res.iterations;
     st = evaluate(el, attractions, x, eps, lambda, det_target);
     const double E_prev = st.energy;
+    // The stats at x as the steps move it (each accepted trial's): no evaluation twice.
+    Stats here = st;
     for (int step = 0; step < o.newton_steps; ++step) {
       // Assemble the gradient and projected Hessian in y.
       core::Stopwatch phase;
@@ -704,7 +709,7 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
       phase.restart();
       if (!(slope < 0)) break;  // converged (or numerically stuck)
       // Backtracking line search; once valid, never accept a step that inverts an element.
-      const Stats cur = evaluate(el, attractions, x, eps, lambda, det_target);
+      const Stats cur = here;
       const bool keep_valid = cur.inverted == 0;
       double alpha = 1.0;
       bool accepted = false;
@@ -716,6 +721,7 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
             (!keep_valid || trial.inverted == 0)) {
           y = yt;
           x = xt;
+          here = trial;
           accepted = true;
           break;
         }
@@ -726,7 +732,7 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
       else damping *= 0.1;
       if (std::abs(alpha * slope) < 1e-14 * std::abs(cur.energy)) break;
     }
-    st = evaluate(el, attractions, x, eps, lambda, det_target);
+    st = here;
     const double E = st.energy;
     core::logger().debug("untangle: iteration {} E {:.6g} eps {:.3g} min det {:.3g} inverted {}", outer, E, eps,
                          st.min_det, st.inverted);
