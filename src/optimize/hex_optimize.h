@@ -101,7 +101,7 @@ struct OptimizeOptions {
 //! Work of one phase.
 struct PhaseReport {
   int iterations = 0;    //!< outer iterations
-  int newton_steps = 0;  //!< Newton steps (sparse factorizations)
+  int newton_steps = 0;  //!< Newton steps
   double seconds = 0;    //!< wall time
 };
 

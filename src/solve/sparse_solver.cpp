@@ -83,6 +83,8 @@ struct SparseSpdSolver::Impl {
   cholmod_factor* factor = nullptr;
   int n = 0;
   bool ok = false;
+  double lnz = 0;    // nonzeros of the factor (analysis)
+  double flops = 0;  // flops of one factorization (analysis)
 
   Impl() {
     single_threaded_blas();
@@ -113,6 +115,8 @@ void SparseSpdSolver::analyze(const Eigen::SparseMatrix<double>& A) {
   m.factor = cholmod_analyze(&s, &m.common);
   if (!m.factor || m.common.status < CHOLMOD_OK)
     throw core::SolverError("sparse solver: CHOLMOD analysis failed: " + status_text(m.common.status));
+  m.lnz = m.common.lnz;
+  m.flops = m.common.fl;
   core::logger().debug("sparse solver: n {}, nnz(A) {}, nnz(L) {:.0f}, flops {:.3g}, ordering {}", m.n, A.nonZeros(),
                        m.common.lnz, m.common.fl, m.common.selected >= 0 ? m.common.method[m.common.selected].ordering : -1);
 }
@@ -158,6 +162,9 @@ Eigen::VectorXd SparseSpdSolver::solve(const Eigen::VectorXd& b) const {
 }
 
 int SparseSpdSolver::size() const { return impl_->n; }
+double SparseSpdSolver::factorization_flops_per_solve() const {
+  return impl_->lnz > 0 ? impl_->flops / (4.0 * impl_->lnz) : 0.0;
+}
 bool SparseSpdSolver::factorized() const { return impl_->ok; }
 
 Eigen::VectorXd solve_spd(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b) {

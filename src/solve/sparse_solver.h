@@ -48,6 +48,10 @@ class SparseSpdSolver {
 
   //! Size n of the analyzed matrix (0 before analyze()).
   [[nodiscard]] int size() const;
+  //! The analysis' flops of one factorization over those of one solve (4 per factor nonzero):
+  //! how many solves a factorization costs, counting flops (0 before analyze()). The solves are
+  //! memory-bound, so in time a factorization is worth several times fewer of them.
+  [[nodiscard]] double factorization_flops_per_solve() const;
   //! True when a successful factorization is available.
   [[nodiscard]] bool factorized() const;
 

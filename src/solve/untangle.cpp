@@ -81,6 +81,36 @@ Mat3 jacobian(const Grad& G, const Eigen::VectorXd& x, const std::array<int, 4>&
   return J;
 }
 
+//! Solve A x = -g by conjugate gradients preconditioned with an earlier factorization of a
+//! matrix close to A (the Newton systems of successive steps differ mostly near the elements
+//! that move most). True when the relative residual fell to tol within max_it iterations.
+bool stale_factor_cg(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& g, const SparseSpdSolver& M,
+                     int max_it, double tol, Eigen::VectorXd& x, int& its) {
+  const Eigen::VectorXd b = -g;
+  const double bn = b.norm();
+  x = Eigen::VectorXd::Zero(b.size());
+  if (!(bn > 0)) return true;
+  Eigen::VectorXd r = b;
+  Eigen::VectorXd z = M.solve(r);
+  Eigen::VectorXd p = z;
+  double rz = r.dot(z);
+  Eigen::VectorXd Ap(b.size());
+  for (its = 1; its <= max_it; ++its) {
+    Ap.noalias() = A.selfadjointView<Eigen::Upper>() * p;
+    const double pAp = p.dot(Ap);
+    if (!(pAp > 0)) return false;
+    const double alpha = rz / pAp;
+    x += alpha * p;
+    r -= alpha * Ap;
+    if (r.norm() <= tol * bn) return true;
+    z = M.solve(r);
+    const double rz_next = r.dot(z);
+    p = z + (rz_next / rz) * p;
+    rz = rz_next;
+  }
+  return false;
+}
+
 }  // namespace
 
 // Outside the anonymous namespace: PatternCache (untangle.h) holds an Assembly.
@@ -596,6 +626,17 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
   Eigen::SparseMatrix<double> Hr;
   if (o.linear_solver == NewtonSolver::Cholesky) Hr = H;
   const int n = A.n;
+  // Steps whose Newton system is solved with the last factorization as a preconditioner: after
+  // a miss (the systems changed too much), the next `backoff` steps factorize without trying.
+  int stale_misses = 0, stale_its = 0, skip_stale = 0, backoff = 1;
+  // Iterations that may be spent before factorizing anyway: at most about half a factorization's
+  // time (measured: a solve with the factor and a product with H take the time of 1/16 of the
+  // flop ratio), none when that is less than two (small or sparse factors are cheap to redo).
+  int stale_budget = 0;
+  if (o.linear_solver == NewtonSolver::Cholesky && o.stale_factor_iterations > 0) {
+    stale_budget = std::min(o.stale_factor_iterations, static_cast<int>(solver.factorization_flops_per_solve() / 10.0));
+    if (stale_budget < 2) stale_budget = 0;
+  }
   double damping = 0.0;
   double t_assemble = 0, t_factor = 0, t_search = 0;
   // Best state seen (fewest inverted elements, then lowest ε-independent order: latest).
@@ -682,16 +723,36 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
       double reg = std::max(1e-9 * mean_diag, damping);
       Eigen::VectorXd dir;
       if (o.linear_solver == NewtonSolver::Cholesky) {
-        bool ok = false;
-        for (int attempt = 0; attempt < 12 && !ok; ++attempt) {
+        bool reused = false;
+        if (stale_budget > 0 && solver.factorized() && skip_stale-- <= 0) {
           double* rv = Hr.valuePtr();
           std::copy(hv, hv + H.nonZeros(), rv);
           for (int j = 0; j < n; ++j) rv[A.diag_slot[j]] += reg;
-          ok = solver.factorize(Hr);
-          if (!ok) reg *= 100.0;
+          int its = 0;
+          reused = stale_factor_cg(Hr, g, solver, stale_budget, o.stale_factor_tolerance, dir, its);
+          stale_its += its;
+          if (reused) {
+            ++res.stale_factor_steps;
+            backoff = 1;
+          } else {
+            ++stale_misses;
+            skip_stale = backoff;
+            backoff = std::min(2 * backoff, 16);
+          }
         }
-        if (!ok) throw core::SolverError("untangle: the Newton system could not be factorized");
-        dir = solver.solve(Eigen::VectorXd(-g));
+        if (!reused) {
+          ++res.factorizations;
+          bool ok = false;
+          for (int attempt = 0; attempt < 12 && !ok; ++attempt) {
+            double* rv = Hr.valuePtr();
+            std::copy(hv, hv + H.nonZeros(), rv);
+            for (int j = 0; j < n; ++j) rv[A.diag_slot[j]] += reg;
+            ok = solver.factorize(Hr);
+            if (!ok) reg *= 100.0;
+          }
+          if (!ok) throw core::SolverError("untangle: the Newton system could not be factorized");
+          dir = solver.solve(Eigen::VectorXd(-g));
+        }
       } else {
         // Truncated Newton: a few Jacobi-preconditioned CG iterations on the (PSD) system give
         // a descent direction at a fraction of a factorization's cost on large meshes.
@@ -763,8 +824,10 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
     x = R.apply(y);
   }
   task.finish();
-  core::logger().debug("untangle: assembly {:.2f} s, factorization+solve {:.2f} s, line search {:.2f} s", t_assemble,
-                       t_factor, t_search);
+  core::logger().debug(
+      "untangle: assembly {:.2f} s, factorization+solve {:.2f} s, line search {:.2f} s; {} factorizations, {} "
+      "steps on an earlier one ({} missed, {} CG iterations)",
+      t_assemble, t_factor, t_search, res.factorizations, res.stale_factor_steps, stale_misses, stale_its);
   st = evaluate(el, attractions, x, eps, lambda, det_target);
   res.untangled = st.inverted == 0;
   res.inverted_after = st.inverted;

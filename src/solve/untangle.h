@@ -147,6 +147,13 @@ struct UntangleOptions {
   NewtonSolver linear_solver = NewtonSolver::Cholesky;  //!< Newton system solver
   int cg_iterations = 100;     //!< ConjugateGradient: iterations per Newton step at most
   double cg_tolerance = 1e-3;  //!< ConjugateGradient: relative residual to stop at
+  //! Cholesky: a step first tries at most this many conjugate-gradient iterations preconditioned
+  //! by the last factorization, and factorizes anew only when they miss the tolerance below. Where
+  //! the systems of successive steps differ little (a barrier that tightens around a few elements,
+  //! quality rounds), a few iterations cost less than a factorization. 0: factorize every step.
+  int stale_factor_iterations = 10;
+  //! Relative residual ‖H d + g‖ / ‖g‖ the preconditioned iterations must reach.
+  double stale_factor_tolerance = 1e-6;
   //! Optional hook called after every outer iteration with the iteration index, the current
   //! coordinates x (3#V) and the attractions; it may change their targets and weights (not
   //! their vertices), e.g. to re-project vertices onto a surface. Return false to stop.
@@ -163,7 +170,9 @@ struct UntangleOptions {
 struct UntangleResult {
   bool untangled = false;     //!< no inverted element at the end
   int iterations = 0;         //!< outer iterations run
-  int newton_steps = 0;       //!< Newton steps run (= sparse factorizations)
+  int newton_steps = 0;       //!< Newton steps run
+  int factorizations = 0;     //!< Cholesky: sparse factorizations (the other steps used an earlier one)
+  int stale_factor_steps = 0; //!< Cholesky: steps solved with an earlier factorization as preconditioner
   int inverted_before = 0;    //!< elements with det J <= min_det_target at the start
   int inverted_after = 0;     //!< ... at the end
   double min_det_before = 0;  //!< min det J at the start
