@@ -122,6 +122,52 @@ TEST(SparseSpdSolver, SolvesAndRejectsIndefinite) {
   EXPECT_THROW((void)s.solve(b), core::SolverError);
 }
 
+//! Upper triangle of a 7-point Laplacian on a k³ grid, shifted to be positive definite.
+Eigen::SparseMatrix<double> grid_laplacian(int k) {
+  const int n = k * k * k;
+  std::vector<Eigen::Triplet<double>> trip;
+  const auto id = [k](int x, int y, int z) { return (z * k + y) * k + x; };
+  for (int z = 0; z < k; ++z)
+    for (int y = 0; y < k; ++y)
+      for (int x = 0; x < k; ++x) {
+        trip.emplace_back(id(x, y, z), id(x, y, z), 6.1);
+        if (x + 1 < k) trip.emplace_back(id(x, y, z), id(x + 1, y, z), -1.0);
+        if (y + 1 < k) trip.emplace_back(id(x, y, z), id(x, y + 1, z), -1.0);
+        if (z + 1 < k) trip.emplace_back(id(x, y, z), id(x, y, z + 1), -1.0);
+      }
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(trip.begin(), trip.end());
+  A.makeCompressed();
+  return A;
+}
+
+// The factorization's cost counted in solves (what the untangler weighs a factorization
+// against): nothing before an analysis, about one where nothing fills in (a chain), and growing
+// with the fill of a 3D grid.
+TEST(SparseSpdSolver, CountsAFactorizationInSolves) {
+  solve::SparseSpdSolver s;
+  EXPECT_EQ(s.factorization_flops_per_solve(), 0.0);
+  const int n = 1000;
+  std::vector<Eigen::Triplet<double>> trip;
+  for (int i = 0; i < n; ++i) {
+    trip.emplace_back(i, i, 4.0);
+    if (i + 1 < n) trip.emplace_back(i, i + 1, -1.0);
+  }
+  Eigen::SparseMatrix<double> chain(n, n);
+  chain.setFromTriplets(trip.begin(), trip.end());
+  chain.makeCompressed();
+  s.analyze(chain);
+  const double on_chain = s.factorization_flops_per_solve();
+  EXPECT_GT(on_chain, 0.0);
+  EXPECT_LT(on_chain, 2.0);
+  s.analyze(grid_laplacian(10));
+  const double on_small_grid = s.factorization_flops_per_solve();
+  s.analyze(grid_laplacian(20));
+  const double on_large_grid = s.factorization_flops_per_solve();
+  EXPECT_GT(on_small_grid, 4.0 * on_chain);
+  EXPECT_GT(on_large_grid, 1.5 * on_small_grid);
+}
+
 //! Threads of this process now (Linux: one entry per thread in /proc/self/task).
 int process_threads() {
   const std::filesystem::path tasks("/proc/self/task");
@@ -134,20 +180,8 @@ TEST(SparseSpdSolver, FactorizesOnTheCallingThreadAlone) {
   // factorization opens its OpenMP loops (clearing its workspace and every large supernode),
   // which ask for four threads whatever omp_set_num_threads says. Run from a new thread, as
   // a solver may be, so that the setting has to be made there too.
-  const int k = 20, n = k * k * k;
-  std::vector<Eigen::Triplet<double>> trip;
-  const auto id = [k](int x, int y, int z) { return (z * k + y) * k + x; };
-  for (int z = 0; z < k; ++z)
-    for (int y = 0; y < k; ++y)
-      for (int x = 0; x < k; ++x) {
-        trip.emplace_back(id(x, y, z), id(x, y, z), 6.1);
-        if (x + 1 < k) trip.emplace_back(id(x, y, z), id(x + 1, y, z), -1.0);
-        if (y + 1 < k) trip.emplace_back(id(x, y, z), id(x, y + 1, z), -1.0);
-        if (z + 1 < k) trip.emplace_back(id(x, y, z), id(x, y, z + 1), -1.0);
-      }
-  Eigen::SparseMatrix<double> A(n, n);  // upper triangle, as the solver reads it
-  A.setFromTriplets(trip.begin(), trip.end());
-  A.makeCompressed();
+  const int n = 20 * 20 * 20;
+  const Eigen::SparseMatrix<double> A = grid_laplacian(20);  // upper triangle, as the solver reads it
   int before = 0, after = 0;
   double residual = 0;
   std::thread worker([&] {
