@@ -108,6 +108,7 @@ bool stale_factor_cg(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd
     p = z + (rz_next / rz) * p;
     rz = rz_next;
   }
+  its = max_it;
   return false;
 }
 
