@@ -724,11 +724,15 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
       double reg = std::max(1e-9 * mean_diag, damping);
       Eigen::VectorXd dir;
       if (o.linear_solver == NewtonSolver::Cholesky) {
-        bool reused = false;
-        if (stale_budget > 0 && solver.factorized() && skip_stale-- <= 0) {
+        // Hr = H + reg·I, the system both ways below solve.
+        const auto regularize = [&] {
           double* rv = Hr.valuePtr();
           std::copy(hv, hv + H.nonZeros(), rv);
           for (int j = 0; j < n; ++j) rv[A.diag_slot[j]] += reg;
+        };
+        regularize();
+        bool reused = false;
+        if (stale_budget > 0 && solver.factorized() && skip_stale-- <= 0) {
           int its = 0;
           reused = stale_factor_cg(Hr, g, solver, stale_budget, o.stale_factor_tolerance, dir, its);
           stale_its += its;
@@ -745,9 +749,7 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
           ++res.factorizations;
           bool ok = false;
           for (int attempt = 0; attempt < 12 && !ok; ++attempt) {
-            double* rv = Hr.valuePtr();
-            std::copy(hv, hv + H.nonZeros(), rv);
-            for (int j = 0; j < n; ++j) rv[A.diag_slot[j]] += reg;
+            if (attempt > 0) regularize();
             ok = solver.factorize(Hr);
             if (!ok) reg *= 100.0;
           }
