@@ -182,6 +182,12 @@ void register_optimize(CLI::App& app) {
                   "attracted with this weight (--face-attraction) and keep that if closer (0: no fit retry)")
       ->check(cli::non_negative())
       ->capture_default_str();
+  sub->add_option("--fit-first-margin", oo.fit_first_margin,
+                  "Attract the quad centres from the first quality round when the untangled mesh, its boundary put on "
+                  "the target, is already beyond this many times --max-hausdorff (the fit retry would run anyway; "
+                  "0: plain rounds first)")
+      ->check(cli::non_negative())
+      ->capture_default_str();
   sub->add_option("--centre-weight", oo.centre_weight,
                   "Weight of each hex's centre Jacobian (Verdict's ninth point) in the energy, relative to a corner's; "
                   "its barrier keeps hexes from twisting around a negative centre (0: corners only)")

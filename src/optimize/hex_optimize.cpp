@@ -390,7 +390,7 @@ void check_input(const core::HexMesh& mesh, const OptimizeOptions& o) {
       !(o.feature_angle > 0 && o.feature_angle < 180) || !(o.feature_distance > 0) ||
       !(o.drift_diagonal > 0) || !(o.hausdorff_bound > 0) || o.drift_retries < 0 ||
       !(o.size_uniformity >= 0 && o.size_uniformity <= 1) || !(o.face_attraction >= 0) ||
-      !(o.fit_retry >= 0) || !(o.centre_weight >= 0))
+      !(o.fit_retry >= 0) || !(o.fit_first_margin >= 0) || !(o.centre_weight >= 0))
     throw core::InputError("optimize: option out of range");
   core::check_indices(mesh);
   for (const Vec3& p : mesh.points)
@@ -558,6 +558,32 @@ double drift_retries(Optimization& w, const Start& start, Best& best, OptimizeRe
   return best_hausdorff;
 }
 
+//! The boundary's Hausdorff distance with every attracted vertex at its closest target point: a
+//! lower bound, in practice, of what the rounds' final snap reaches, since the rounds slide the
+//! vertices along the surface but do not shorten the quads' chords. Beyond the bound, the
+//! distance is in the chords (quads too long for the curvature, or straddling a sharp edge the
+//! hex mesh has no edge for), which only the fit with the quad centres attracted removes.
+double snapped_hausdorff(const Optimization& w) {
+  core::HexMesh snapped = w.mesh;
+  std::vector<solve::Attraction> attr = w.pb.attractions;
+  w.pb.project(solve::flatten(snapped.points), attr);
+  for (const auto& a : attr) snapped.points[a.vertex] = a.target;
+  return quality::hausdorff_distance(snapped, w.target_mesh).relative;
+}
+
+//! When the rounds should attract the quad centres from the start, the Hausdorff distance of the
+//! start's boundary put on the target (else 0): the fit retry would run anyway (a valid start
+//! beyond the bound by the margin), and the plain rounds before it would be thrown away.
+double fit_from_start(const Optimization& w, const Start& start) {
+  const OptimizeOptions& o = w.o;
+  if (!(o.fit_retry > 0 && o.face_attraction <= 0 && o.fit_first_margin > 0 && start.inverted == 0)) return 0;
+  const double h = snapped_hausdorff(w);
+  const bool fit = h > o.fit_first_margin * o.hausdorff_bound;
+  core::logger().info("optimize: boundary on the target: Hausdorff {:.3f} %{}", 100 * h,
+                      fit ? "; the rounds attract the quad centres from the start" : "");
+  return fit ? h : 0;
+}
+
 //! Fit retry: still beyond the bound with the boundary vertices on the target, the distance is
 //! the chords of quads too long for the surface's curvature or straddling a sharp edge the hex
 //! mesh has no edge for. Run the rounds again from their start with the quad centres attracted
@@ -590,6 +616,55 @@ void fit_retry(Optimization& w, const Start& start, double best_hausdorff, Best&
         100 * h);
     mesh.points = kept.points;
     best = kept;
+  }
+}
+
+//! The quality rounds as they are asked for, then the final snap and the drift retries. Returns
+//! the Hausdorff distance of the result (0 when not measured).
+double plain_rounds(Optimization& w, const Start& start, Best& best, OptimizeResult& res,
+                    core::ProgressTask* progress) {
+  quality_rounds(w, start, w.o.face_attraction, best, res, progress);
+  // Finally put the boundary exactly on the target where that keeps every hex at or above the
+  // minimum reached (and inverts nothing); not when the boundary fits the surface by its quad
+  // centres too (the vertices are then meant to be off it by a fraction of the chord).
+  if (w.o.face_attraction <= 0) w.pb.snap(w.mesh, best.summary.min);
+  // Then the retries, when the boundary is beyond the Hausdorff bound.
+  return drift_retries(w, start, best, res);
+}
+
+//! The rounds with the quad centres attracted, from the start: what the fit retry runs, without
+//! the plain rounds before it. `snapped` is the start's distance with its boundary on the target,
+//! which the plain rounds end at or above (their snap puts the vertices back on the target, and
+//! they do not shorten the chords). So a valid fit within the bound or closer than that is what
+//! the fit retry would have kept. Otherwise the plain rounds and their retries run too, and the
+//! fit is kept as the fit retry would keep it: valid, and closer than a plain result beyond the
+//! bound (or the plain result invalid).
+void fitted_rounds(Optimization& w, const Start& start, double snapped, Best& best, OptimizeResult& res,
+                   core::ProgressTask& progress) {
+  quality_rounds(w, start, w.o.fit_retry, best, res, &progress);
+  const double h = w.hausdorff();
+  if (best.inverted == 0 && (h <= w.o.hausdorff_bound || h < snapped)) {
+    core::logger().info("optimize: quad centres attracted: Hausdorff {:.3f} %, mSJ {:.4f}", 100 * h,
+                        best.summary.min);
+    res.fit_retry = true;
+    return;
+  }
+  const Best fit{best.summary, best.inverted, w.mesh.points};
+  w.mesh.points = start.points;
+  best = best_of(w.mesh);
+  double plain = plain_rounds(w, start, best, res, nullptr);
+  if (plain <= 0) plain = w.hausdorff();
+  if (fit.inverted == 0 && (best.inverted > 0 || (plain > w.o.hausdorff_bound && h < plain))) {
+    core::logger().info("optimize: quad centres attracted: Hausdorff {:.3f} % (without: {:.3f} %), mSJ {:.4f}",
+                        100 * h, 100 * plain, fit.summary.min);
+    w.mesh.points = fit.points;
+    best = fit;
+    res.fit_retry = true;
+  } else {
+    core::logger().info(
+        "optimize: attracting the quad centres did not lower the Hausdorff distance ({:.3f} % against {:.3f} %); "
+        "not kept",
+        100 * h, 100 * plain);
   }
 }
 
@@ -642,14 +717,12 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   // (the untangled state's average is not a quality the user asked to keep).
   const Start start{mesh.points, best.inverted,
                     best.summary.average - (res.untangle.iterations > 0 ? o.average_slack : 0.0)};
-  quality_rounds(w, start, o.face_attraction, best, res, &progress);
-  // Finally put the boundary exactly on the target where that keeps every hex at or above the
-  // minimum reached (and inverts nothing); not when the boundary fits the surface by its quad
-  // centres too (the vertices are then meant to be off it by a fraction of the chord).
-  if (o.face_attraction <= 0) pb.snap(mesh, best.summary.min);
-  // Then the retries, when the boundary is beyond the Hausdorff bound.
-  const double hausdorff = drift_retries(w, start, best, res);
-  fit_retry(w, start, hausdorff, best, res);
+  if (const double snapped = fit_from_start(w, start); snapped > 0) {
+    fitted_rounds(w, start, snapped, best, res, progress);
+  } else {
+    const double hausdorff = plain_rounds(w, start, best, res, &progress);
+    fit_retry(w, start, hausdorff, best, res);
+  }
   res.quality.seconds = seconds_since(t2);
 
   res.after = summary(mesh, false);

@@ -93,6 +93,11 @@ struct OptimizeOptions {
   //! weight (face_attraction), kept when that lowers the Hausdorff distance; 0: no fit retry.
   //! Curved and creased surfaces gain most (figures in bench/RESULTS.md).
   double fit_retry = 1.0;
+  //! When the valid start of the rounds, with every boundary vertex put on the target, is beyond
+  //! fit_first_margin times hausdorff_bound, the fit retry would run anyway and the plain rounds
+  //! before it be thrown away: the rounds then attract the quad centres from the start (the same
+  //! result as the fit retry's when that is kept). 0: always the plain rounds first.
+  double fit_first_margin = 1.0;
   //! Weight of each hex's centre tet (optimize/centre_frames.h) relative to one of its corner
   //! tets; 0 turns it off (then a hex may keep positive corners around a negative centre).
   double centre_weight = 0.1;

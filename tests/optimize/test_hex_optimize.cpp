@@ -260,13 +260,20 @@ TEST(HexOptimize, SizeUniformityEvensOutAGradedMesh) {
   EXPECT_TRUE(check.ok()) << check.reason();
 }
 
+//! The ball grid of n cells a side with its boundary vertices on `sphere`: every boundary quad a
+//! chord.
+core::HexMesh ball_on(const core::TriMesh& sphere, int n) {
+  const optimize::TargetSurface target(sphere, {});
+  core::HexMesh ball = test::ball_grid(n);
+  for (const int v : core::boundary(ball).vertex_map) ball.points[v] = target.closest_point(ball.points[v]);
+  return ball;
+}
+
 TEST(HexOptimize, FaceAttractionFitsInsteadOfInterpolating) {
   // a coarse ball: with every boundary vertex on the sphere each quad is a chord; attracting the
   // quad centres too lets the boundary straddle the sphere, and the Hausdorff distance drops
   const core::TriMesh sphere = test::sphere_surface(4);
-  const optimize::TargetSurface target(sphere, {});
-  core::HexMesh start = test::ball_grid(6);
-  for (const int v : core::boundary(start).vertex_map) start.points[v] = target.closest_point(start.points[v]);
+  const core::HexMesh start = ball_on(sphere, 6);
   // one quality round without reweighting (the ball's corner hexes would otherwise pull their
   // vertices off the sphere, which is another test's subject)
   optimize::OptimizeOptions o;
@@ -289,6 +296,30 @@ TEST(HexOptimize, FaceAttractionFitsInsteadOfInterpolating) {
   EXPECT_LT(outside, d_chords * sphere_diagonal(sphere));
   const auto check = optimize::check_foldover(fitted);
   EXPECT_TRUE(check.ok()) << check.reason();
+}
+
+// A coarse ball whose boundary, on the sphere, is beyond the Hausdorff bound by its chords: the
+// fit retry runs after the plain rounds and is kept. Attracting the quad centres from the start
+// gives the same mesh, bit for bit, without the plain rounds.
+TEST(HexOptimize, FitFromTheStartGivesTheFitRetrysMeshWithoutThePlainRounds) {
+  const core::TriMesh sphere = test::sphere_surface(4);
+  const core::HexMesh start = ball_on(sphere, 4);
+  optimize::OptimizeOptions o;
+  o.quality_rounds = 2;
+  o.drift_retries = 0;
+  ASSERT_GT(quality::hausdorff_distance(start, sphere).relative, o.hausdorff_bound);
+  o.fit_first_margin = 0;  // the plain rounds first, then the fit retry
+  core::HexMesh retried = start;
+  const auto r0 = optimize::optimize_hex_mesh(retried, sphere, o);
+  ASSERT_TRUE(r0.fit_retry);
+  o.fit_first_margin = 1;
+  core::HexMesh fitted = start;
+  const auto r1 = optimize::optimize_hex_mesh(fitted, sphere, o);
+  EXPECT_TRUE(r1.fit_retry);
+  EXPECT_EQ(fitted.points, retried.points);
+  EXPECT_EQ(r1.rounds_run, r0.rounds_run - 2);
+  EXPECT_LE(quality::hausdorff_distance(fitted, sphere).relative, o.hausdorff_bound);
+  EXPECT_GT(r1.after.min, 0.0);
 }
 
 TEST(HexOptimize, BadInput) {
