@@ -359,39 +359,53 @@ void certify_attempt(AttemptResult& r, const core::TetMesh& input, const Constru
                       r.certificate->reason());
 }
 
-//! Run the plan: label every attempt, order them (order_by_promise), then deform them in turn
-//! until one is valid and certified; keep the attempt with the fewest failures (the first valid
-//! one). `failures` lists why the others failed.
+//! Run the plan: label its first attempt (the user's labeling, deformed first whatever the
+//! others' estimates, order_by_promise) and deform it; only when it fails, label the others,
+//! order them, and deform them in turn until one is valid and certified. The labelings of the
+//! fallbacks (a pre-deformation among them) are never looked at when the first attempt
+//! certifies, as it does on every shared model. Keep the attempt with the fewest failures (the
+//! first valid one). `failures` lists why the others failed.
 std::optional<AttemptResult> run_plan(const std::vector<Attempt>& plan, const Model& model,
                                       const core::TetMesh& input, const ConstructOptions& o,
                                       const core::Stopwatch& clock, ConstructResult& res,
                                       std::vector<std::string>& failures) {
+  if (plan.empty()) return std::nullopt;
   Predeformations predeformations(model, o, res.seconds);
-  std::vector<LabeledAttempt> labeled = label_plan(plan, model, predeformations, o, res.seconds, failures);
-  if (!plan.empty()) order_by_promise(labeled, plan.front());
-  log_order(labeled);
+  const std::vector<Attempt> first(plan.begin(), plan.begin() + 1), rest(plan.begin() + 1, plan.end());
+  std::vector<LabeledAttempt> labeled = label_plan(first, model, predeformations, o, res.seconds, failures);
+  bool all_labeled = rest.empty();
   std::optional<AttemptResult> kept;
-  const int count = static_cast<int>(std::min<std::size_t>(labeled.size(), static_cast<std::size_t>(o.max_attempts)));
-  for (int i = 0; i < count; ++i) {
+  const auto max_attempts = static_cast<std::size_t>(std::max(0, o.max_attempts));
+  for (std::size_t i = 0; i < max_attempts; ++i) {
     if (res.attempts > 0 && o.time_limit > 0 && clock.seconds() > o.time_limit) {
       failures.push_back(fmt::format("time limit of {:g} s reached after {} attempt(s)", o.time_limit, res.attempts));
       break;
     }
-    const LabeledAttempt& la = labeled[static_cast<std::size_t>(i)];
-    if (o.on_attempt) o.on_attempt(i + 1, count, la.attempt, clock.seconds());
+    if (i == labeled.size() && !all_labeled) {
+      std::vector<LabeledAttempt> more = label_plan(rest, model, predeformations, o, res.seconds, failures);
+      labeled.insert(labeled.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
+      order_by_promise(labeled, plan.front());
+      log_order(labeled);
+      all_labeled = true;
+    }
+    if (i >= labeled.size()) break;
+    // Attempts planned: the whole plan until the fallbacks are labeled, then those with a labeling.
+    const int count = static_cast<int>(std::min(all_labeled ? labeled.size() : plan.size(), max_attempts));
+    const LabeledAttempt& la = labeled[i];
+    if (o.on_attempt) o.on_attempt(static_cast<int>(i) + 1, count, la.attempt, clock.seconds());
     ++res.attempts;
     const double started = clock.seconds();
-    const double deadline = attempt_deadline(o.time_limit, started, i + 1 < count);
+    const double deadline = attempt_deadline(o.time_limit, started, static_cast<int>(i) + 1 < count);
     const std::function<bool()> expired = [&clock, deadline] { return deadline > 0 && clock.seconds() > deadline; };
     AttemptResult r = deform_attempt(la, model, o, expired, res.seconds);
     if (deadline > 0 && clock.seconds() > deadline && !r.valid)
       r.failure += fmt::format(" (stopped at its budget of {:.0f} s)", deadline - started);
-    if (i < o.inject_failed_attempts && r.valid) {
+    if (static_cast<int>(i) < o.inject_failed_attempts && r.valid) {
       r.valid = false;
       r.failures = 1;
       r.failure = la.attempt.name() + ": injected failure";
     }
-    if (r.valid) certify_attempt(r, input, o, i < o.inject_uncertified_attempts, res);
+    if (r.valid) certify_attempt(r, input, o, static_cast<int>(i) < o.inject_uncertified_attempts, res);
     if (!r.failure.empty()) failures.push_back(r.failure);
     if (r.deformation && (!kept || r.valid || r.failures < kept->failures)) kept = std::move(r);
     if (kept && kept->valid) break;

@@ -196,9 +196,9 @@ ConstructResult construct_polycube(const core::TriMesh& surface, const Construct
 ConstructResult construct_polycube(core::TetMesh mesh, const ConstructOptions& options = {});
 
 //! Label, repair, deform and certify a prepared tet mesh (boundary refined, positively
-//! oriented): the attempts of plan_attempts(), labeled, then deformed most promising first until
-//! one leaves a valid map (or the time limit or max_attempts is reached); the attempt with the
-//! fewest failures is kept and certified.
+//! oriented): the first attempt of plan_attempts(), then, when it fails, the others, labeled and
+//! deformed most promising first until one leaves a valid map (or the time limit or
+//! max_attempts is reached); the attempt with the fewest failures is kept and certified.
 //! \throw as construct_polycube
 ConstructResult construct_from_prepared(const core::TetMesh& mesh, const ConstructOptions& options = {});
 

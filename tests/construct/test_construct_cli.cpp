@@ -256,6 +256,24 @@ TEST(ConstructCli, AFailedAttemptFallsBackToTheNextAndTheReportNamesBoth) {
   expect_second_attempt_kept("fallback_attempt", "attempt-1", "compactness 1: injected failure");
 }
 
+// The fallbacks' labelings (among them the pre-deformed ones) are made only when the first
+// attempt fails: a box that certifies at once spends no time pre-deforming; with its first
+// attempt's failure injected, the others are labeled, the pre-deformation with them.
+TEST(ConstructCli, TheFallbacksAreLabeledOnlyWhenTheFirstAttemptFails) {
+  const fs::path dir = temp_dir("lazy_fallbacks");
+  write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
+  const CliResult first = construct(dir / "box.obj", dir / "first", "");
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const auto j1 = construct_report(dir / "first");
+  EXPECT_EQ(j1["attempts"].get<int>(), 1);
+  EXPECT_EQ(j1["seconds"]["predeform"].get<double>(), 0.0);
+  const CliResult second = construct(dir / "box.obj", dir / "second", "--inject-failure attempt-1");
+  ASSERT_EQ(second.exit_code, 0) << second.err;
+  const auto j2 = construct_report(dir / "second");
+  EXPECT_EQ(j2["attempts"].get<int>(), 2);
+  EXPECT_GT(j2["seconds"]["predeform"].get<double>(), 0.0);
+}
+
 // An attempt whose tets are all positive and whose triangles all face their labels can still
 // fail the certification (its polycube boundary crossing itself elsewhere). The plan then goes on
 // to the next attempt instead of stopping with that one: `--inject-failure uncertified-attempt-1`
