@@ -11,6 +11,7 @@
 #include "optimize/centre_frames.h"
 #include "optimize/face_attraction.h"
 #include "optimize/features.h"
+#include "optimize/foldover_check.h"
 #include "optimize/vertex_roles.h"
 #include "quality/surface_distance.h"
 #include "solve/untangle.h"
@@ -668,6 +669,32 @@ void fitted_rounds(Optimization& w, const Start& start, double snapped, Best& be
   }
 }
 
+//! Phase 2: the quality rounds from the untangled mesh, keeping the best state, then the retries.
+void quality_phase(Optimization& w, OptimizeResult& res, core::ProgressTask& progress) {
+  const OptimizeOptions& o = w.o;
+  core::HexMesh& mesh = w.mesh;
+  Best best = best_of(mesh);
+  // Keep the average: exactly when the input was valid; after untangling, within a small slack
+  // (the untangled state's average is not a quality the user asked to keep).
+  const Start start{mesh.points, best.inverted,
+                    best.summary.average - (res.untangle.iterations > 0 ? o.average_slack : 0.0)};
+  if (const double snapped = fit_from_start(w, start); snapped > 0) {
+    fitted_rounds(w, start, snapped, best, res, progress);
+  } else {
+    const double hausdorff = plain_rounds(w, start, best, res, &progress);
+    fit_retry(w, start, hausdorff, best, res);
+  }
+}
+
+//! Whether the mesh's boundary crosses itself (untangled: every hex positive), logged.
+bool untangled_boundary_crosses(const core::HexMesh& mesh) {
+  const FoldoverReport check = check_foldover(mesh);
+  if (check.boundary_self_intersections == 0) return false;
+  core::logger().info("optimize: the untangled boundary crosses itself ({} pairs of triangles); no quality rounds",
+                      check.boundary_self_intersections);
+  return true;
+}
+
 }  // namespace
 
 OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& target_mesh,
@@ -710,19 +737,11 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   res.untangle.seconds = seconds_since(t1);
   progress.step();
 
-  // Phase 2: quality rounds, keeping the best state.
+  // Phase 2: quality rounds, keeping the best state (unless the caller would throw them away).
   const auto t2 = Clock::now();
-  Best best = best_of(mesh);
-  // Keep the average: exactly when the input was valid; after untangling, within a small slack
-  // (the untangled state's average is not a quality the user asked to keep).
-  const Start start{mesh.points, best.inverted,
-                    best.summary.average - (res.untangle.iterations > 0 ? o.average_slack : 0.0)};
-  if (const double snapped = fit_from_start(w, start); snapped > 0) {
-    fitted_rounds(w, start, snapped, best, res, progress);
-  } else {
-    const double hausdorff = plain_rounds(w, start, best, res, &progress);
-    fit_retry(w, start, hausdorff, best, res);
-  }
+  res.stopped_crossing =
+      o.stop_when_untangled_crosses && inverted_jacobians(mesh) == 0 && untangled_boundary_crosses(mesh);
+  if (!res.stopped_crossing) quality_phase(w, res, progress);
   res.quality.seconds = seconds_since(t2);
 
   res.after = summary(mesh, false);

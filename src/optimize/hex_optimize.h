@@ -101,6 +101,11 @@ struct OptimizeOptions {
   //! Weight of each hex's centre tet (optimize/centre_frames.h) relative to one of its corner
   //! tets; 0 turns it off (then a hex may keep positive corners around a negative centre).
   double centre_weight = 0.1;
+  //! Stop before the quality rounds when the untangled mesh's boundary crosses itself
+  //! (OptimizeResult::stopped_crossing): the rounds keep the crossings (they only move the
+  //! boundary along the target), so a caller that tries again with a stiffer boundary barrier
+  //! when the result crosses itself (pipeline/optimize_stage.h) does not wait for them.
+  bool stop_when_untangled_crosses = false;
 };
 
 //! Work of one phase.
@@ -126,6 +131,9 @@ struct OptimizeResult {
   int rounds_run = 0;  //!< quality rounds run, the fit retry's included (quality_patience may stop them early)
   int drift_retries = 0;                  //!< optimizations run again for drifted boundary vertices
   bool fit_retry = false;                 //!< the fit retry (quad centres attracted) was kept
+  //! With stop_when_untangled_crosses: the untangled boundary crossed itself, and the mesh is
+  //! the untangled one (no quality rounds ran).
+  bool stopped_crossing = false;
   PhaseReport setup, untangle, quality;
   double seconds = 0;  //!< total wall time
 };

@@ -56,7 +56,7 @@ class OptimizeStage {
 
   core::HexMesh run(const core::HexMesh& gridded) {
     hex_ = gridded;
-    why_ = optimize(hex_, o_.optimize_options);
+    why_ = optimize(hex_, first_try_options());
     retry_with_stiffer_barrier(hex_, gridded, "stiffer boundary barrier");
     pad_instead();
     grid_again();
@@ -70,11 +70,22 @@ class OptimizeStage {
  private:
   bool falls_back() const { return !why_.empty() && o_.optimize_fallbacks; }
 
+  //! The options of a first optimization, which step 2 may follow: it stops after the
+  //! untangling when the boundary then crosses itself (the quality rounds keep the crossings),
+  //! so that step 2 starts at once.
+  optimize::OptimizeOptions first_try_options() const {
+    optimize::OptimizeOptions oo = o_.optimize_options;
+    oo.stop_when_untangled_crosses = o_.optimize_fallbacks && oo.boundary_barrier > 0;
+    return oo;
+  }
+
   //! Step 1 on `hex` (in place): why it fails the fold-over check, empty when it passes.
   std::string optimize(core::HexMesh& hex, const optimize::OptimizeOptions& oo) {
     const optimize::OptimizeResult opt = optimize::optimize_hex_mesh(hex, in_.target, oo);
     r_.iterations_optimize = opt.untangle.iterations + opt.quality.iterations;
-    return why_failed(optimize::check_foldover(hex));
+    stopped_ = opt.stopped_crossing;
+    const std::string why = why_failed(optimize::check_foldover(hex));
+    return stopped_ && !why.empty() ? "after the untangling, " + why : why;
   }
 
   //! Why a checked mesh fails (empty: it passes); sets crossing_ when the boundary crossing
@@ -98,16 +109,27 @@ class OptimizeStage {
   //! only, `gridded` is optimized again with the stiffer barrier, under the fallback name
   //! `name`. Its cost is one optimization; when it fails too, `hex` keeps the first result (the
   //! one the later steps pad).
+  //! A first optimization that stopped after the untangling (first_try_options) gets its quality
+  //! rounds when the retry fails too: its mesh is the one the later steps pad.
   void retry_with_stiffer_barrier(core::HexMesh& hex, const core::HexMesh& gridded, const std::string& name) {
     if (!falls_back() || !crossing_ || o_.optimize_options.boundary_barrier <= 0) return;
     record_failure();
     core::logger().warn("optimize: {}; trying a stiffer boundary barrier", why_);
     r_.optimize_fallback = name;
+    const bool first_stopped = stopped_;
     core::HexMesh first = std::exchange(hex, gridded);
     optimize::OptimizeOptions stiffer = o_.optimize_options;
     stiffer.boundary_barrier *= kBarrierRetry;
     why_ = optimize(hex, stiffer);
-    if (!why_.empty()) hex = std::move(first);
+    if (why_.empty()) return;
+    hex = std::move(first);
+    if (first_stopped) {
+      core::logger().warn("optimize: {}; optimizing the first mesh in full", why_);
+      hex = gridded;
+      const int iterations = r_.iterations_optimize;
+      optimize::optimize_hex_mesh(hex, in_.target, o_.optimize_options);
+      r_.iterations_optimize = iterations;
+    }
   }
 
   //! Step 3: padding costs one optimization, a new gridding's more.
@@ -169,7 +191,7 @@ class OptimizeStage {
     const int first_iterations = r_.iterations_optimize;
     const core::HexMesh finer_grid = grid_and_write(map_, 2 * o_.target_hexes, sizing_, in_, out_dir_, r_, wrote_);
     core::HexMesh finer = finer_grid;
-    why_ = optimize(finer, o_.optimize_options);
+    why_ = optimize(finer, first_try_options());
     retry_with_stiffer_barrier(finer, finer_grid, name + ", stiffer boundary barrier");
     if (why_.empty()) {
       const bool injected_again = far_checks_++ < injected_far_;
@@ -205,6 +227,7 @@ class OptimizeStage {
   int checks_ = 0;
   int far_checks_ = 0;
   bool crossing_ = false;   //!< the last result failed by its boundary crossing itself only
+  bool stopped_ = false;    //!< the last optimization stopped after its untangling (first_try_options)
   bool first_grid_ = true;  //!< hex_ comes from the first gridding, unpadded
 };
 

@@ -2,6 +2,7 @@
 // Small hex meshes and target surfaces built in code for the optimize tests.
 
 #include "support/fixtures.h"
+#include "core/topology.h"
 #include "core/types.h"
 
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <array>
 #include <functional>
 #include <map>
+#include <numbers>
 #include <random>
 #include <utility>
 #include <vector>
@@ -70,6 +72,31 @@ inline core::HexMesh ball_grid(int n) {
     if (p.norm() > 0) p *= p.lpNorm<Eigen::Infinity>() / p.norm();
   }
   return m;
+}
+
+//! A bar of positive hexes bent along a circle by `turn` full turns: past one turn every hex is
+//! still valid, but its end overlaps its start, so the boundary crosses itself.
+inline core::HexMesh bent_bar(double turn) {
+  const int n = 40;
+  core::HexMesh m = box_grid(n, 1, 1, 1.0, 0.2, 0.2);
+  for (auto& p : m.points) {
+    const double a = turn * 2 * std::numbers::pi * p.x();
+    const double r = 1.0 + p.y();
+    p = core::Vec3(r * std::cos(a), -r * std::sin(a), p.z());
+  }
+  return m;
+}
+
+//! The boundary of a hex mesh as a triangle surface (each quad split along its 0-2 diagonal).
+inline core::TriMesh boundary_surface(const core::HexMesh& m) {
+  const core::HexBoundary b = core::boundary(m);
+  core::TriMesh t;
+  t.points = b.surface.points;
+  for (const auto& q : b.surface.cells) {
+    t.cells.push_back({q[0], q[1], q[2]});
+    t.cells.push_back({q[0], q[2], q[3]});
+  }
+  return t;
 }
 
 //! Move every point by a seeded uniform random offset of at most `amplitude` per coordinate,

@@ -26,28 +26,15 @@ TEST(Foldover, InvertedHexIsCaught) {
   EXPECT_GT(r.inverted_hexes, 0);
 }
 
-//! A bar of positive hexes bent along a circle by more than a full turn: every hex is
-//! valid, but its end overlaps its start, so the boundary crosses itself.
-core::HexMesh bent_bar(double turn) {
-  const int n = 40;
-  core::HexMesh m = test::box_grid(n, 1, 1, 1.0, 0.2, 0.2);
-  for (auto& p : m.points) {
-    const double a = turn * 2 * std::numbers::pi * p.x();
-    const double r = 1.0 + p.y();
-    p = core::Vec3(r * std::cos(a), -r * std::sin(a), p.z());
-  }
-  return m;
-}
-
 TEST(Foldover, BarBentLessThanATurnPasses) {
-  const core::HexMesh m = bent_bar(0.9);
+  const core::HexMesh m = test::bent_bar(0.9);
   const auto r = optimize::check_foldover(m);
   EXPECT_EQ(r.inverted_hexes, 0);
   EXPECT_TRUE(r.ok()) << r.reason();
 }
 
 TEST(Foldover, BarFoldedOverItselfIsCaught) {
-  const core::HexMesh m = bent_bar(1.1);
+  const core::HexMesh m = test::bent_bar(1.1);
   const auto r = optimize::check_foldover(m);
   EXPECT_EQ(r.inverted_hexes, 0);  // every hex is positive...
   EXPECT_EQ(r.nonpositive_scaled_jacobian, 0);

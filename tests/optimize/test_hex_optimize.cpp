@@ -322,6 +322,36 @@ TEST(HexOptimize, FitFromTheStartGivesTheFitRetrysMeshWithoutThePlainRounds) {
   EXPECT_GT(r1.after.min, 0.0);
 }
 
+// A bar of positive hexes bent by more than a turn has a boundary that crosses itself; the
+// quality rounds move the boundary along the target and keep the crossing. With
+// stop_when_untangled_crosses the optimizer stops before them (for a caller that then tries a
+// stiffer barrier) and says so; without it the rounds run.
+TEST(HexOptimize, StopsBeforeTheRoundsWhenTheUntangledBoundaryCrossesItself) {
+  const core::HexMesh bar = test::bent_bar(1.1);
+  const core::TriMesh target = test::boundary_surface(bar);
+  optimize::OptimizeOptions o;
+  o.quality_rounds = 1;
+  o.stop_when_untangled_crosses = true;
+  core::HexMesh stopped = bar;
+  const auto r = optimize::optimize_hex_mesh(stopped, target, o);
+  EXPECT_TRUE(r.stopped_crossing);
+  EXPECT_EQ(r.rounds_run, 0);
+  EXPECT_EQ(r.quality.iterations, 0);
+  EXPECT_GT(optimize::check_foldover(stopped).boundary_self_intersections, 0);
+  o.stop_when_untangled_crosses = false;
+  core::HexMesh rounds = bar;
+  const auto full = optimize::optimize_hex_mesh(rounds, target, o);
+  EXPECT_FALSE(full.stopped_crossing);
+  EXPECT_EQ(full.rounds_run, 1);
+  EXPECT_GT(optimize::check_foldover(rounds).boundary_self_intersections, 0);
+  // A boundary that does not cross itself goes through the rounds either way.
+  core::HexMesh open_bar = test::bent_bar(0.9);
+  o.stop_when_untangled_crosses = true;
+  const auto passing = optimize::optimize_hex_mesh(open_bar, test::boundary_surface(open_bar), o);
+  EXPECT_FALSE(passing.stopped_crossing);
+  EXPECT_EQ(passing.rounds_run, 1);
+}
+
 TEST(HexOptimize, BadInput) {
   core::HexMesh empty;
   EXPECT_THROW(optimize::optimize_hex_mesh(empty, test::box_surface()), core::InputError);
