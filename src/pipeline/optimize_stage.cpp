@@ -122,14 +122,15 @@ class OptimizeStage {
     stiffer.boundary_barrier *= kBarrierRetry;
     why_ = optimize(hex, stiffer);
     if (why_.empty()) return;
-    hex = std::move(first);
-    if (first_stopped) {
-      core::logger().warn("optimize: {}; optimizing the first mesh in full", why_);
-      hex = gridded;
-      const int iterations = r_.iterations_optimize;
-      optimize::optimize_hex_mesh(hex, in_.target, o_.optimize_options);
-      r_.iterations_optimize = iterations;
+    if (!first_stopped) {
+      hex = std::move(first);
+      return;
     }
+    core::logger().warn("optimize: {}; optimizing the first mesh in full", why_);
+    hex = gridded;
+    const int iterations = r_.iterations_optimize;  // the report keeps the retry's, as when it did not stop
+    optimize::optimize_hex_mesh(hex, in_.target, o_.optimize_options);
+    r_.iterations_optimize = iterations;
   }
 
   //! Step 3: padding costs one optimization, a new gridding's more.
