@@ -93,13 +93,7 @@ TEST(VertexRoles, TwoSharpEdgesTakeAJunctionOfThreeLines) {
   // takes the corner, as three sharp edges take the cube's corners.
   const int n = 4;
   const core::HexMesh m = test::box_grid(n, n, n);
-  const core::HexBoundary b = core::boundary(m);
-  core::TriMesh cube;
-  cube.points = b.surface.points;
-  for (const auto& q : b.surface.cells) {
-    cube.cells.push_back({q[0], q[1], q[2]});
-    cube.cells.push_back({q[0], q[2], q[3]});
-  }
+  const core::TriMesh cube = test::boundary_surface(m);
   auto at = [&](const core::Vec3& x) {
     for (int v = 0; v < cube.num_points(); ++v)
       if ((cube.points[v] - x).norm() < 1e-12) return v;
