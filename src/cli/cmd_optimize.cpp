@@ -48,7 +48,7 @@ void run_optimize(const OptimizeCliOptions& o) {
   const auto tc = std::chrono::steady_clock::now();
   const optimize::FoldoverReport check = optimize::check_foldover(mesh);
   const double check_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tc).count();
-  const quality::SurfaceDistance dist = quality::hausdorff_distance(mesh, target);
+  const quality::SurfaceDistance dist = r.distance ? *r.distance : quality::hausdorff_distance(mesh, target);
 
   nlohmann::json j;
   j["input"] = o.input;

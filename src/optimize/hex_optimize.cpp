@@ -318,10 +318,11 @@ struct Optimization {
   [[nodiscard]] solve::TetElements elements() const {
     return corner_elements(mesh, lengths, multiplier);
   }
+  //! The last boundary distance measured, with the points it was measured for.
+  quality::RememberedDistance distances{};
+
   //! The boundary's Hausdorff distance to the target, relative to its bounding-box diagonal.
-  [[nodiscard]] double hausdorff() const {
-    return quality::hausdorff_distance(mesh, target_mesh).relative;
-  }
+  [[nodiscard]] double hausdorff() { return distances.measure(mesh, target_mesh).relative; }
 };
 
 //! Optimize the mesh's points from their current positions. With o.boundary_barrier > 0 the
@@ -745,6 +746,7 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   res.quality.seconds = seconds_since(t2);
 
   res.after = summary(mesh, false);
+  if (const quality::SurfaceDistance* d = w.distances.find(mesh)) res.distance = *d;
   res.inverted_after = inverted_jacobians(mesh);
   res.untangled = res.inverted_after == 0;
   res.seconds = seconds_since(t0);

@@ -25,6 +25,9 @@
 
 #include "core/types.h"
 #include "quality/scaled_jacobian.h"
+#include "quality/surface_distance.h"
+
+#include <optional>
 
 namespace polycube::optimize {
 
@@ -134,6 +137,9 @@ struct OptimizeResult {
   //! With stop_when_untangled_crosses: the untangled boundary crossed itself, and the mesh is
   //! the untangled one (no quality rounds ran).
   bool stopped_crossing = false;
+  //! The result's boundary distance to the target, when the optimizer measured it for the
+  //! points it returns (the drift and fit retries do): a caller need not measure it again.
+  std::optional<quality::SurfaceDistance> distance;
   PhaseReport setup, untangle, quality;
   double seconds = 0;  //!< total wall time
 };

@@ -48,7 +48,7 @@ PadResult pad_hex_mesh(const core::HexMesh& mesh, const core::TriMesh& target, c
   r.insert_seconds = sheet.seconds;
   if (options.run_optimizer) r.optimization = optimize::optimize_hex_mesh(r.mesh, target, options.optimize);
   r.check = optimize::check_foldover(r.mesh);
-  r.distance = quality::hausdorff_distance(r.mesh, target);
+  r.distance = r.optimization.distance ? *r.optimization.distance : quality::hausdorff_distance(r.mesh, target);
   r.after = mesh_figures(r.mesh);
   r.seconds = clock.seconds();
   progress.step();

@@ -5,6 +5,7 @@
 
 #include "construct/construct.h"
 #include "core/types.h"
+#include "quality/surface_distance.h"
 #include "repair/repair.h"
 
 #include <filesystem>
@@ -22,6 +23,10 @@ struct ConstructInput {
   core::TriMesh target;
   //! What the default repairs changed in a surface input (repair/repair.h), a line per kind.
   std::vector<std::string> repairs;
+  //! The last hex mesh's distance to `target`, kept with its points and hexes: the optimize
+  //! stage's checks and the final report measure the meshes the optimizer and the padding have
+  //! measured already. A cache: the input itself does not change.
+  mutable quality::RememberedDistance distances;
 };
 
 //! Read a construction input and check what can be checked before heavy work: a surface gets

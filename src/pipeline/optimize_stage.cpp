@@ -82,6 +82,7 @@ class OptimizeStage {
   //! Step 1 on `hex` (in place): why it fails the fold-over check, empty when it passes.
   std::string optimize(core::HexMesh& hex, const optimize::OptimizeOptions& oo) {
     const optimize::OptimizeResult opt = optimize::optimize_hex_mesh(hex, in_.target, oo);
+    if (opt.distance) in_.distances.remember(hex, *opt.distance);
     r_.iterations_optimize = opt.untangle.iterations + opt.quality.iterations;
     stopped_ = opt.stopped_crossing;
     const std::string why = why_failed(optimize::check_foldover(hex));
@@ -164,7 +165,7 @@ class OptimizeStage {
       if (!falls_back()) return;
       record_failure();
       core::logger().warn("optimize: {}; gridding again: {}", why_, g.name);
-      hex_ = grid_and_write(map_, g.target_hexes, g.sizing, in_, out_dir_, r_, wrote_);
+      hex_ = grid_and_write(map_, g.target_hexes, g.sizing, out_dir_, r_, wrote_);
       r_.optimize_fallback = g.name;
       r_.padding = "none";
       first_grid_ = false;
@@ -190,7 +191,7 @@ class OptimizeStage {
     core::logger().warn("optimize: {}; gridding again: {}", why_, name);
     const std::string first_fallback = std::exchange(r_.optimize_fallback, name);
     const int first_iterations = r_.iterations_optimize;
-    const core::HexMesh finer_grid = grid_and_write(map_, 2 * o_.target_hexes, sizing_, in_, out_dir_, r_, wrote_);
+    const core::HexMesh finer_grid = grid_and_write(map_, 2 * o_.target_hexes, sizing_, out_dir_, r_, wrote_);
     core::HexMesh finer = finer_grid;
     why_ = optimize(finer, first_try_options());
     retry_with_stiffer_barrier(finer, finer_grid, name + ", stiffer boundary barrier");
@@ -209,11 +210,11 @@ class OptimizeStage {
     core::logger().warn("optimize: {}: {}; keeping the first grid's mesh", name, why_);
     why_.clear();
     r_.optimize_fallback = first_fallback;
-    grid_and_write(map_, o_.target_hexes, sizing_, in_, out_dir_, r_, wrote_);
+    grid_and_write(map_, o_.target_hexes, sizing_, out_dir_, r_, wrote_);
     r_.iterations_optimize = first_iterations;
   }
 
-  double distance(const core::HexMesh& hex) const { return quality::hausdorff_distance(hex, in_.target).relative; }
+  double distance(const core::HexMesh& hex) const { return in_.distances.measure(hex, in_.target).relative; }
 
   const core::PolycubeMap& map_;
   const mesh::GridSizing sizing_;

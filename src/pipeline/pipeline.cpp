@@ -266,13 +266,13 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   //    then it is gridded with its own sizing, as the unsimplified fallback of simplify is.
   run.stage("hexmesh", [&] {
     try {
-      hex = grid_and_write(map, o.target_hexes, grid_sizing, in, out_dir, r, add_file);
+      hex = grid_and_write(map, o.target_hexes, grid_sizing, out_dir, r, add_file);
     } catch (const core::GeometryError& e) {
       if (grid_sizing == mesh::GridSizing::Map) throw;
       core::logger().warn("hexmesh: {}; gridding with the map's own sizing", e.what());
       r.grid_sizing_fallback = fmt::format("map sizing ({})", e.what());
       grid_sizing = mesh::GridSizing::Map;
-      hex = grid_and_write(map, o.target_hexes, grid_sizing, in, out_dir, r, add_file);
+      hex = grid_and_write(map, o.target_hexes, grid_sizing, out_dir, r, add_file);
     }
   });
 
@@ -319,14 +319,12 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
 
   // 7. quality of the final hex mesh
   run.stage("quality", [&] {
-    quality::ReportOptions qo;
-    qo.target = &in.target;
-    const quality::HexReport h = quality::hex_report(hex, qo);
+    const quality::HexReport h = quality::hex_report(hex);
     r.msj = h.sj.min;
     r.asj = h.sj.average;
     r.inverted = h.sj.inverted;
     if (h.domains) r.final_domains = h.domains->domains;
-    if (h.distance) r.hausdorff_relative = h.distance->relative;
+    r.hausdorff_relative = in.distances.measure(hex, in.target).relative;
     write_vtk(out_dir / "hex_quality.vtk", core::to_mesh_data(hex), h.fields());
     wrote(out_dir / "hex_quality.vtk");
     if (r.inverted > 0)

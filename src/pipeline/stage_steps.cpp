@@ -24,7 +24,7 @@ void write_vtk(const std::filesystem::path& path, core::MeshData data, std::vect
 }
 
 core::HexMesh grid_and_write(const core::PolycubeMap& map, int target, mesh::GridSizing sizing,
-                             const ConstructInput& in, const std::filesystem::path& out_dir, RunResult& r,
+                             const std::filesystem::path& out_dir, RunResult& r,
                              const FileWritten& wrote) {
   mesh::GridOptions go;
   go.target_hexes = target;
@@ -43,7 +43,6 @@ core::HexMesh grid_and_write(const core::PolycubeMap& map, int target, mesh::Gri
   wrote(out_dir / "hex.mesh");
   quality::ReportOptions qo;
   qo.structure = true;
-  qo.target = &in.target;
   const quality::QuadReport qr = quality::quad_report(g.quad_model, qo);
   write_vtk(out_dir / "quad.vtk", core::to_mesh_data(g.quad_model), qr.fields());
   wrote(out_dir / "quad.vtk");
@@ -89,6 +88,7 @@ std::optional<padding::PadResult> pad_and_record(const core::HexMesh& hex, const
   progress.step();
   if (facets.empty()) return std::nullopt;
   padding::PadResult p = padding::pad_hex_mesh(hex, in.target, facets, o.padding_options);
+  in.distances.remember(p.mesh, p.distance);
   progress.step();
   progress.finish();
   r.padding = how;

@@ -32,7 +32,7 @@ void write_vtk(const std::filesystem::path& path, core::MeshData data, std::vect
 //! Grid the map at about `target` hexes with `sizing`; write hex.mesh and quad.vtk and record
 //! the gridded mesh's figures in r. Returns the hex mesh.
 core::HexMesh grid_and_write(const core::PolycubeMap& map, int target, mesh::GridSizing sizing,
-                             const ConstructInput& in, const std::filesystem::path& out_dir, RunResult& r,
+                             const std::filesystem::path& out_dir, RunResult& r,
                              const FileWritten& wrote);
 
 //! One line for a fold-over check's failures.

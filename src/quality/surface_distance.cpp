@@ -323,4 +323,20 @@ SurfaceDistance hausdorff_distance(const core::HexMesh& hexes, const core::TriMe
   return hausdorff_distance(triangulate(b.surface), reference, options);
 }
 
+const SurfaceDistance* RememberedDistance::find(const core::HexMesh& hex) const {
+  if (!distance_ || hex.points != points_ || hex.cells != cells_) return nullptr;
+  return &*distance_;
+}
+
+void RememberedDistance::remember(const core::HexMesh& hex, const SurfaceDistance& d) {
+  points_ = hex.points;
+  cells_ = hex.cells;
+  distance_ = d;
+}
+
+const SurfaceDistance& RememberedDistance::measure(const core::HexMesh& hex, const core::TriMesh& reference) {
+  if (find(hex) == nullptr) remember(hex, hausdorff_distance(hex, reference));
+  return *distance_;
+}
+
 }  // namespace polycube::quality

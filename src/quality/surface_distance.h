@@ -21,6 +21,8 @@
 #include "core/types.h"
 
 #include <cstddef>
+#include <optional>
+#include <vector>
 
 namespace polycube::quality {
 
@@ -70,5 +72,25 @@ core::TriMesh triangulate(const core::QuadMesh& quads);
 //! two triangles) and a reference surface. \throw as hausdorff_distance and core::boundary
 SurfaceDistance hausdorff_distance(const core::HexMesh& hexes, const core::TriMesh& reference,
                                    const SurfaceDistanceOptions& options = {});
+
+//! The distance (default options) of one hex mesh's boundary to one reference surface, kept with
+//! the points and hexes it was measured for. A chain measures the same mesh several times (the
+//! optimizer's last retry, the pipeline's distance check, the final report), and each
+//! measurement of a 20,000-hex mesh refines hundreds of thousands of points: the same mesh gets
+//! the same figures without the work. The caller keeps the reference the same.
+class RememberedDistance {
+ public:
+  //! The distance remembered for exactly these points and hexes, or nullptr.
+  [[nodiscard]] const SurfaceDistance* find(const core::HexMesh& hex) const;
+  //! Remember `d` as the distance of `hex` (forgetting the one before).
+  void remember(const core::HexMesh& hex, const SurfaceDistance& d);
+  //! The remembered distance of `hex`, else hausdorff_distance(hex, reference), remembered.
+  const SurfaceDistance& measure(const core::HexMesh& hex, const core::TriMesh& reference);
+
+ private:
+  std::vector<core::Vec3> points_;
+  std::vector<core::HexMesh::Cell> cells_;
+  std::optional<SurfaceDistance> distance_;
+};
 
 }  // namespace polycube::quality

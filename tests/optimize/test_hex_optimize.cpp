@@ -322,6 +322,32 @@ TEST(HexOptimize, FitFromTheStartGivesTheFitRetrysMeshWithoutThePlainRounds) {
   EXPECT_GT(r1.after.min, 0.0);
 }
 
+// The distance the optimizer reports is a measurement of the mesh it returns, figure for figure
+// (callers take it instead of measuring again); nothing is reported when it measured nothing.
+TEST(HexOptimize, TheDistanceItReportsIsThatOfTheMeshItReturns) {
+  const core::TriMesh sphere = test::sphere_surface(4);
+  const core::HexMesh start = ball_on(sphere, 4);
+  for (const double margin : {0.0, 1.0}) {  // plain rounds, retries and fit retry; fit from the start
+    optimize::OptimizeOptions o;
+    o.quality_rounds = 2;
+    o.fit_first_margin = margin;
+    core::HexMesh mesh = start;
+    const auto r = optimize::optimize_hex_mesh(mesh, sphere, o);
+    ASSERT_TRUE(r.distance.has_value()) << "margin " << margin;
+    const quality::SurfaceDistance d = quality::hausdorff_distance(mesh, sphere);
+    EXPECT_EQ(r.distance->hausdorff, d.hausdorff);
+    EXPECT_EQ(r.distance->hausdorff_upper, d.hausdorff_upper);
+    EXPECT_EQ(r.distance->relative, d.relative);
+    EXPECT_EQ(r.distance->reference_to_surface.mean, d.reference_to_surface.mean);
+  }
+  optimize::OptimizeOptions none;
+  none.quality_rounds = 1;
+  none.drift_retries = 0;
+  none.fit_retry = 0;
+  core::HexMesh mesh = start;
+  EXPECT_FALSE(optimize::optimize_hex_mesh(mesh, sphere, none).distance.has_value());
+}
+
 // A bar of positive hexes bent by more than a turn has a boundary that crosses itself; the
 // quality rounds move the boundary along the target and keep the crossing. With
 // stop_when_untangled_crosses the optimizer stops before them (for a caller that then tries a

@@ -140,6 +140,38 @@ TEST(HausdorffDistance, HexBoundaryAgainstShiftedAndScaledBoxes) {
   EXPECT_NEAR(d.hausdorff, 0.0, 1e-12);
 }
 
+TEST(RememberedDistance, GivesTheMeasurementOfExactlyTheSameMeshOnly) {
+  auto hexes = test::gridded_box(1, 1, 1, 3);
+  const core::TriMesh target = box_surface(0, 1, 2, Vec3(0, 0, 0.05));
+  RememberedDistance memo;
+  EXPECT_EQ(memo.find(hexes), nullptr);
+  const SurfaceDistance measured = memo.measure(hexes, target);
+  const SurfaceDistance direct = hausdorff_distance(hexes, target);
+  EXPECT_EQ(measured.hausdorff, direct.hausdorff);
+  EXPECT_EQ(measured.hausdorff_upper, direct.hausdorff_upper);
+  EXPECT_EQ(measured.surface_to_reference.queries, direct.surface_to_reference.queries);
+  ASSERT_NE(memo.find(hexes), nullptr);
+  EXPECT_EQ(memo.find(hexes)->hausdorff, direct.hausdorff);
+
+  // One coordinate moved by its last bit: another mesh, measured again.
+  auto moved = hexes;
+  moved.points[0].z() = std::nextafter(moved.points[0].z(), 1.0);
+  EXPECT_EQ(memo.find(moved), nullptr);
+  // The same points with another hex's vertex order: another mesh too.
+  auto reordered = hexes;
+  std::swap(reordered.cells[0][0], reordered.cells[0][1]);
+  EXPECT_EQ(memo.find(reordered), nullptr);
+
+  // Remembering another measurement replaces the first.
+  moved.points[0].z() -= 0.5;  // a corner pulled out below the box: farther from the target
+  const SurfaceDistance far = hausdorff_distance(moved, target);
+  memo.remember(moved, far);
+  EXPECT_EQ(memo.find(hexes), nullptr);
+  ASSERT_NE(memo.find(moved), nullptr);
+  EXPECT_EQ(memo.measure(moved, target).hausdorff, far.hausdorff);
+  EXPECT_GT(far.hausdorff, direct.hausdorff);
+}
+
 TEST(HausdorffDistance, DenserSamplingFindsInteriorMaxima) {
   // A single triangle against an open pyramid over it whose apex lies below the triangle: both
   // share the vertices and edges, so vertex and edge sampling alone would report 0; the
