@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include <memory>
+#include <sstream>
 #include <string>
 
 namespace polycube::cli {
@@ -25,7 +26,20 @@ struct MeshOptions {
   bool allow_defects = false;  //!< write the mesh even when snapping broke the polycube
   mesh::GridOptions grid;
   structure::ValidateOptions validate;
+  std::vector<std::string> refine_near;  //!< "x,y,z" model-space points (--refine-near)
 };
+
+//! A model-space point of --refine-near: three numbers separated by commas.
+core::Vec3 parse_point(const std::string& text) {
+  core::Vec3 p;
+  std::istringstream in(text);
+  char comma1 = 0;
+  char comma2 = 0;
+  if (!(in >> p.x() >> comma1 >> p.y() >> comma2 >> p.z()) || comma1 != ',' || comma2 != ',' || !(in >> std::ws).eof() ||
+      !p.allFinite())
+    throw core::InputError(fmt::format("--refine-near: '{}' is not a point x,y,z (three numbers and two commas)", text));
+  return p;
+}
 
 nlohmann::json snap_json(const mesh::SnapReport& r) {
   nlohmann::json defects = nlohmann::json::array();
@@ -56,6 +70,11 @@ void run_mesh(const MeshOptions& o, bool hex) {
   structure::validate_map(map, o.validate);
   mesh::GridOptions go = o.grid;
   go.volume = hex;
+  if (!o.refine_near.empty()) {
+    std::vector<core::Vec3> model_points;
+    for (const std::string& t : o.refine_near) model_points.push_back(parse_point(t));
+    go.refine_near = mesh::polycube_points(map, model_points);
+  }
   const mesh::GridResult r = mesh::grid_polycube(map, go);
 
   // refuse a broken mesh unless asked
@@ -152,6 +171,13 @@ CLI::App* add_common(CLI::App& app, const char* name, const char* help,
                   "Cells per interval between chart planes: 'uniform' (one scale, cubes in polycube space) or "
                   "'map' (follows the map's stretch: closer to one hex size in model space; --scale is then cells "
                   "per model length)");
+  sub->add_option("--refine-near", opts->refine_near,
+                  "Twice the cells (--refine-factor) around this model-space point x,y,z (repeatable): the slabs "
+                  "of the polycube that hold it, on each axis (on a simplified polycube one unit thick, else the "
+                  "interval between chart planes); a feature thinner than the hexes gets more of them");
+  sub->add_option("--refine-factor", opts->grid.refine_factor, "How many times the cells around --refine-near")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
   sub->add_flag(
       "--allow-defects", opts->allow_defects,
       "Write the mesh even when naive snapping breaks the polycube (merged corners, ...)");

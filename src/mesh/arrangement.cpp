@@ -7,6 +7,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <iterator>
+#include <vector>
 #include <utility>
 
 namespace polycube::mesh {
@@ -20,8 +24,35 @@ int Arrangement::nearest_level(int a, double x) const {
                                     : static_cast<int>(it - l.begin());
 }
 
+namespace {
+
+//! Add the planes of `extra` to the levels of one axis (see build_arrangement) and move the
+//! charts' level indices with them.
+void add_extra_levels(std::vector<double>& level, const std::vector<double>& extra, double tol, int axis,
+                      const structure::PolycubeStructure& s, std::vector<int>& chart_level) {
+  std::vector<double> add;
+  for (double x : extra) {
+    if (!(x > level.front() + tol && x < level.back() - tol)) continue;
+    const auto it = std::lower_bound(level.begin(), level.end(), x);
+    if (std::abs(*it - x) > tol && std::abs(*(it - 1) - x) > tol) add.push_back(x);
+  }
+  if (add.empty()) return;
+  std::sort(add.begin(), add.end());
+  add.erase(std::unique(add.begin(), add.end(), [tol](double a, double b) { return b - a <= tol; }), add.end());
+  std::vector<double> merged;
+  std::merge(level.begin(), level.end(), add.begin(), add.end(), std::back_inserter(merged));
+  for (std::size_t c = 0; c < s.charts.size(); ++c)
+    if (s.charts[c].axis == axis) {
+      const double x = level[static_cast<std::size_t>(chart_level[c])];
+      chart_level[c] = static_cast<int>(std::lower_bound(merged.begin(), merged.end(), x) - merged.begin());
+    }
+  level = std::move(merged);
+}
+
+}  // namespace
+
 Arrangement build_arrangement(const structure::PolycubeStructure& s, const TetLocator& locator,
-                              double tol, long long max_boxes) {
+                              double tol, long long max_boxes, const std::array<std::vector<double>, 3>& extra) {
   Arrangement arr;
   arr.tolerance = tol;
   arr.chart_level.assign(s.charts.size(), -1);
@@ -47,6 +78,7 @@ Arrangement build_arrangement(const structure::PolycubeStructure& s, const TetLo
       throw core::InputError(
           fmt::format("the polycube has {} chart plane(s) along {}: not a closed polycube",
                       arr.level[a].size(), core::axis_name(a)));
+    add_extra_levels(arr.level[a], extra[static_cast<std::size_t>(a)], tol, a, s, arr.chart_level);
   }
   const long long nbox = static_cast<long long>(arr.boxes(0)) * arr.boxes(1) * arr.boxes(2);
   if (nbox > max_boxes)

@@ -32,9 +32,13 @@ struct Arrangement {
 };
 
 //! Levels: the chart coordinates of each axis clustered (a gap larger than tol starts a new
-//! level); a box is inside when its centre lies in a tet of the locator (no chart crosses a box).
+//! level), and the planes of `extra` strictly between the first and last of them and farther
+//! than tol from every one (planes of no chart: a lattice finer between them,
+//! GridOptions::refine_near); a box is inside when its centre lies in a tet of the locator (no
+//! chart crosses a box).
 //! \throw core::InputError with fewer than two levels on an axis, or more than max_boxes boxes
 Arrangement build_arrangement(const structure::PolycubeStructure& s, const TetLocator& locator,
-                              double tol, long long max_boxes);
+                              double tol, long long max_boxes,
+                              const std::array<std::vector<double>, 3>& extra = {});
 
 }  // namespace polycube::mesh

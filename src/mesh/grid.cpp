@@ -522,14 +522,48 @@ void check_options(const core::PolycubeMap& map, const GridOptions& options) {
   if (options.target_hexes < 0 || options.target_quads < 0)
     throw core::InputError("the target number of hexes or quads must be positive");
   if (!(options.tolerance >= 0.0)) throw core::InputError("the tolerance must be >= 0");
+  if (options.refine_factor < 1 || options.refine_factor > 64)
+    throw core::InputError(fmt::format("the refinement factor must be from 1 to 64 (got {})", options.refine_factor));
+  for (const Vec3& p : options.refine_near)
+    if (!p.allFinite()) throw core::InputError("a point to refine the lattice near has a non-finite coordinate");
 }
 
 //! The integer lattice coordinate of every level and the scale that gives them.
 struct Levels {
   bool by_map = false;                       //!< GridSizing::Map: per-interval cell counts
+  bool refined = false;                      //!< some intervals' cells multiplied (refine_near)
   double scale = 1.0;                        //!< GridSizing::Map: cells per model length
   std::array<std::vector<long long>, 3> sn;  //!< integer of each level, per axis
 };
+
+//! Multiply the cells of the intervals (per axis) holding a coordinate of a point of `near` by
+//! `factor`, shifting the integers of the levels above them. Every level keeps its own integer
+//! and the lattice points are located per interval (inverse_snapping), as with Map sizing.
+//! Returns whether some interval was refined. Levels that collapsed (sn not increasing) are
+//! left as they are: the deformation that snaps them works with the rounded levels.
+bool refine_intervals(const Arrangement& arr, const std::vector<Vec3>& near, int factor, double tol,
+                      std::array<std::vector<long long>, 3>& sn) {
+  if (near.empty() || factor <= 1) return false;
+  for (int a = 0; a < 3; ++a)
+    for (std::size_t i = 0; i + 1 < sn[a].size(); ++i)
+      if (sn[a][i + 1] <= sn[a][i]) return false;
+  bool refined = false;
+  for (int a = 0; a < 3; ++a) {
+    const auto& l = arr.level[a];
+    std::vector<char> fine(static_cast<std::size_t>(arr.boxes(a)), 0);
+    for (const Vec3& p : near)
+      for (int i = 0; i < arr.boxes(a); ++i)
+        if (p[a] >= l[i] - tol && p[a] <= l[i + 1] + tol) fine[static_cast<std::size_t>(i)] = 1;
+    std::vector<long long> out{sn[a][0]};
+    for (int i = 0; i < arr.boxes(a); ++i) {
+      const long long cells = sn[a][i + 1] - sn[a][i];
+      out.push_back(out.back() + (fine[static_cast<std::size_t>(i)] ? factor * cells : cells));
+      refined = refined || fine[static_cast<std::size_t>(i)];
+    }
+    sn[a] = std::move(out);
+  }
+  return refined;
+}
 
 //! The scale (and, with Map sizing, the cells of every interval) and the levels' integers.
 Levels choose_levels(const core::PolycubeMap& map, const Arrangement& arr, const GridOptions& options,
@@ -554,6 +588,7 @@ Levels choose_levels(const core::PolycubeMap& map, const Arrangement& arr, const
     scale = std::max(scale, 1.0);
   lv.scale = scale;
   lv.sn = levels_at(scale);
+  lv.refined = refine_intervals(arr, options.refine_near, options.refine_factor, tol, lv.sn);
   core::logger().info("gridding: {} {:.6g}, {} x {} x {} chart planes", by_map ? "cells per model length" : "scale",
                       scale, arr.level[0].size(), arr.level[1].size(), arr.level[2].size());
   return lv;
@@ -824,6 +859,50 @@ std::string SnapReport::summary(int max_items) const {
   return out;
 }
 
+//! Planes of no chart around the points of GridOptions::refine_near, for the arrangement. On an
+//! integer polycube (a simplified one) the integer planes on either side of each coordinate (on
+//! both sides of one on a plane), so that the refined cells fill the unit slab that holds it, not
+//! the whole interval between chart planes: at any scale an integer plane keeps its own lattice
+//! plane, and the cells of the interval it splits are the same in all. Otherwise none.
+std::array<std::vector<double>, 3> refine_planes(const structure::PolycubeStructure& s, const std::vector<Vec3>& near,
+                                                 double tol) {
+  std::array<std::vector<double>, 3> out;
+  for (const auto& c : s.charts)
+    if (std::abs(c.coordinate - std::round(c.coordinate)) > tol) return out;
+  for (const Vec3& p : near)
+    for (int a = 0; a < 3; ++a) {
+      const double x = p[a];
+      const double below = std::abs(x - std::round(x)) <= tol ? std::round(x) - 1 : std::floor(x);
+      const double above = std::abs(x - std::round(x)) <= tol ? std::round(x) + 1 : std::floor(x) + 1;
+      out[static_cast<std::size_t>(a)].push_back(below);
+      out[static_cast<std::size_t>(a)].push_back(above);
+    }
+  return out;
+}
+
+std::vector<Vec3> polycube_points(const core::PolycubeMap& map, const std::vector<Vec3>& model_points) {
+  core::check_map_indices(map);
+  const double tol = 1e-9 * core::bounding_box(map.model).diagonal();
+  const TetLocator locator(map.tets, map.model, tol);
+  std::vector<Vec3> out;
+  out.reserve(model_points.size());
+  for (const Vec3& p : model_points) {
+    TetLocator::Hit hit = locator.locate(p);
+    if (hit.tet < 0) hit = locator.nearest(p, 2);
+    if (hit.tet < 0) hit = locator.nearest_brute_force(p);
+    if (hit.tet < 0) throw core::GeometryError("the map has no tet to locate a point in");
+    Vec3 q = Vec3::Zero();
+    for (int k = 0; k < 4; ++k) {
+      const double b = std::clamp(hit.bary[static_cast<std::size_t>(k)], 0.0, 1.0);
+      q += b * map.polycube[static_cast<std::size_t>(map.tets[static_cast<std::size_t>(hit.tet)][k])];
+    }
+    double sum = 0.0;
+    for (double b : hit.bary) sum += std::clamp(b, 0.0, 1.0);
+    out.push_back(sum > 0.0 ? Vec3(q / sum) : map.polycube[static_cast<std::size_t>(map.tets[static_cast<std::size_t>(hit.tet)][0])]);
+  }
+  return out;
+}
+
 GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& options) {
   const auto t_start = Clock::now();
   check_options(map, options);
@@ -833,7 +912,8 @@ GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& option
   const double diag = core::bounding_box(map.polycube).diagonal();
   const double tol = options.tolerance * diag;
   const TetLocator base_locator(map.tets, map.polycube, tol);
-  const Arrangement arr = build_arrangement(s, base_locator, tol, options.max_lattice_points);
+  const Arrangement arr = build_arrangement(s, base_locator, tol, options.max_lattice_points,
+                                            refine_planes(s, options.refine_near, tol));
   core::logger().debug("gridding: structure, locator and arrangement {:.3f} s",
                        seconds_since(t_start));
 
@@ -844,7 +924,7 @@ GridResult grid_polycube(const core::PolycubeMap& map, const GridOptions& option
   // 2. snapping: how far the levels move, whether some collapse
   const SnapContext ctx{s, arr, lv.sn, lv.scale};
   const double tol_lattice = tol * lv.scale;
-  res.snapping = snap_report(ctx, lv.by_map, tol_lattice);
+  res.snapping = snap_report(ctx, lv.by_map || lv.refined, tol_lattice);
   SnapReport& rep = res.snapping;
 
   // 3. the lattice: integer cells inside the snapped arrangement boxes

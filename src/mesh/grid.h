@@ -64,6 +64,13 @@ struct GridOptions {
   double tolerance = 1e-6;
   //! Largest lattice (bounding box of the scaled polycube, in lattice points) accepted.
   long long max_lattice_points = 400'000'000;
+  //! Polycube-space points the lattice is finer around: on each axis, the interval between
+  //! consecutive chart planes that holds a point's coordinate (both, on a plane) gets
+  //! refine_factor times the cells the resolution above gives it, so the hexes there are that
+  //! much shorter along the axis. The other intervals keep their cells: a feature thinner than
+  //! the hexes gets more of them without multiplying the hexes everywhere.
+  std::vector<core::Vec3> refine_near;
+  int refine_factor = 2;  //!< >= 1
 };
 
 //! Kinds of snapping defects (thesis fig. 3.2).
@@ -125,6 +132,11 @@ struct GridResult {
   double seconds_locate = 0.0;  //!< wall time of locating and mapping the lattice points
   double seconds_total = 0.0;   //!< wall time of the whole gridding
 };
+
+//! The polycube-space images of model-space points (for GridOptions::refine_near): each point
+//! is located in the map's model tets (the nearest tet, clamped, when it lies outside, as a
+//! point of the input surface may by a rounding) and mapped with its barycentric coordinates.
+std::vector<core::Vec3> polycube_points(const core::PolycubeMap& map, const std::vector<core::Vec3>& model_points);
 
 //! Grid a polycube map.
 //! \pre the map is valid (structure::validate_map)

@@ -3,6 +3,7 @@
 
 #include "core/errors.h"
 #include "core/log.h"
+#include "core/topology.h"
 #include "io/mesh_io.h"
 #include "optimize/foldover_check.h"
 #include "optimize/hex_optimize.h"
@@ -11,6 +12,7 @@
 #include <fmt/format.h>
 
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -49,7 +51,7 @@ class OptimizeStage {
       : map_(map), sizing_(sizing), in_(in), o_(o), out_dir_(out_dir), r_(r), wrote_(wrote),
         // Testing only: "optimize-step-N" counts the first N results as failed (RunOptions);
         // "optimize-crossing-N" as boundaries that cross themselves; "optimize-distance-N" the
-        // first N valid meshes of step 5 as too far from the input (2: the finer one too).
+        // first N valid meshes of step 5 as too far from the input (2: the first finer one too).
         injected_(injected_steps(o.inject_failure, "optimize-step-")),
         injected_crossings_(injected_steps(o.inject_failure, "optimize-crossing-")),
         injected_far_(injected_steps(o.inject_failure, "optimize-distance-")) {}
@@ -175,43 +177,108 @@ class OptimizeStage {
 
   //! Step 5. The optimizer's drift and fit retries have already pulled the boundary to the
   //! surface where its hexes allow; a mesh still too far has hexes too coarse for some feature
-  //! (a thin part, a crease between grid planes). Twice the hexes shrink every hex by 2^(1/3).
-  //! When the finer mesh fails or is not closer, the first one stays, and its gridding is
-  //! written again (gridding is deterministic, and cheap beside an optimization).
+  //! (a thin part, a crease between grid planes). First the grid with twice the cells in the
+  //! intervals between chart planes that hold the two farthest points (one on each surface),
+  //! which shortens the hexes there by half at the cost of those slabs only; then, while still
+  //! beyond the bound, the grid twice as fine everywhere (its hexes 2^(1/3) shorter). Each is
+  //! kept when it is valid and closer than the mesh kept before; the first grid stays otherwise.
+  //! hex.mesh is written again for the kept one (gridding is deterministic, and cheap beside an
+  //! optimization).
   void grid_finer_when_far() {
     const double bound = o_.optimize_options.hausdorff_bound;
     if (!o_.optimize_fallbacks || !first_grid_ || bound <= 0) return;
+    const quality::SurfaceDistance& d = in_.distances.measure(hex_, in_.target);
     const bool injected = far_checks_++ < injected_far_;
-    const double far = injected ? std::numeric_limits<double>::infinity() : distance(hex_);
+    double far = injected ? std::numeric_limits<double>::infinity() : d.relative;
     if (far <= bound) return;
     why_ = injected ? std::string("injected distance")
                     : fmt::format("{:.2f} % of the diagonal from the input (bound {:.2f} %)", 100 * far, 100 * bound);
     record_failure();
-    const std::string name = "finer grid for the distance (2x hexes)";
+    const Finer first{r_.optimize_fallback, o_.target_hexes, {}, r_.iterations_optimize};
+    Finer kept = first;
+    const std::vector<core::Vec3> near = mesh::polycube_points(map_, far_points(d));
+    const Finer tries[] = {{"finer grid near the far points (2x cells there)", o_.target_hexes, near, 0},
+                           {"finer grid for the distance (2x hexes)", 2 * o_.target_hexes, {}, 0}};
+    gridded_ = first.name;
+    for (const Finer& f : tries) {
+      if (far <= bound) break;
+      if (kept.name != first.name) record_failure();  // kept, still too far: why_ says how far
+      const std::optional<double> closer = try_finer(f, far);
+      if (!closer) continue;
+      far = *closer;
+      kept = f;
+      kept.iterations = r_.iterations_optimize;
+    }
+    r_.optimize_fallback = kept.name;
+    r_.iterations_optimize = kept.iterations;
+    if (gridded_ != kept.name)  // the kept mesh's gridding was overwritten
+      grid_and_write(map_, kept.target_hexes, sizing_, out_dir_, r_, wrote_, kept.near);
+    if (kept.name == first.name)
+      core::logger().warn("optimize: no finer grid was valid and closer; keeping the first grid's mesh");
+    why_.clear();
+  }
+
+  //! Where the mesh misses the input by more than the bound: the input's vertices that far from
+  //! the mesh's boundary, the boundary's vertices that far from the input, and the two points
+  //! where the distance is largest (between vertices, and for an injected distance).
+  std::vector<core::Vec3> far_points(const quality::SurfaceDistance& d) const {
+    const double bound = o_.optimize_options.hausdorff_bound * d.reference_diagonal;
+    const core::TriMesh boundary = quality::triangulate(core::boundary(hex_).surface);
+    std::vector<core::Vec3> out = quality::vertices_farther_than(in_.target, boundary, bound);
+    const std::vector<core::Vec3> mesh_side = quality::vertices_farther_than(boundary, in_.target, bound);
+    out.insert(out.end(), mesh_side.begin(), mesh_side.end());
+    out.push_back(d.surface_to_reference.worst_point);
+    out.push_back(d.reference_to_surface.worst_point);
+    return out;
+  }
+
+  //! One gridding of step 5.
+  struct Finer {
+    std::string name;
+    int target_hexes = 0;
+    std::vector<core::Vec3> near;  //!< the points around which the cells are doubled
+    int iterations = 0;            //!< the optimizer's iterations for the mesh (once kept)
+  };
+
+  //! Grid `f`, optimize it (with step 2 when its boundary crosses itself) and make it the mesh
+  //! when it is valid and closer than `far`: returns its distance then, nothing otherwise (the
+  //! reason recorded in optimize_tried). A near refinement that would make more hexes than the
+  //! grid twice as fine is not tried: that one is as fine there, and finer elsewhere.
+  std::optional<double> try_finer(const Finer& f, double far) {
+    gridded_ = f.name;
+    if (!f.near.empty()) {
+      const int plain = r_.hexes;
+      const core::HexMesh grid = grid_and_write(map_, f.target_hexes, sizing_, out_dir_, r_, wrote_, f.near);
+      if (r_.hexes > 2 * plain) {
+        core::logger().info("optimize: {}: {} hexes, more than twice the first grid's; not tried", f.name, r_.hexes);
+        return std::nullopt;
+      }
+      return optimize_finer(f.name, grid, far);
+    }
+    return optimize_finer(f.name, grid_and_write(map_, f.target_hexes, sizing_, out_dir_, r_, wrote_), far);
+  }
+
+  std::optional<double> optimize_finer(const std::string& name, const core::HexMesh& grid, double far) {
     core::logger().warn("optimize: {}; gridding again: {}", why_, name);
-    const std::string first_fallback = std::exchange(r_.optimize_fallback, name);
-    const int first_iterations = r_.iterations_optimize;
-    const core::HexMesh finer_grid = grid_and_write(map_, 2 * o_.target_hexes, sizing_, out_dir_, r_, wrote_);
-    core::HexMesh finer = finer_grid;
+    r_.optimize_fallback = name;
+    core::HexMesh finer = grid;
     why_ = optimize(finer, first_try_options());
-    retry_with_stiffer_barrier(finer, finer_grid, name + ", stiffer boundary barrier");
+    retry_with_stiffer_barrier(finer, grid, name + ", stiffer boundary barrier");
     if (why_.empty()) {
-      const bool injected_again = far_checks_++ < injected_far_;
-      const double closer = injected_again ? far : distance(finer);
+      const bool injected = far_checks_++ < injected_far_;
+      const double closer = injected ? far : distance(finer);
       if (closer < far) {
         hex_ = std::move(finer);
-        return;
+        why_ = fmt::format("{:.2f} % of the diagonal from the input", 100 * closer);
+        return closer;
       }
-      why_ = injected_again ? std::string("injected distance")
-                            : fmt::format("{:.2f} % of the diagonal from the input, not closer", 100 * closer);
+      why_ = injected ? std::string("injected distance")
+                      : fmt::format("{:.2f} % of the diagonal from the input, not closer", 100 * closer);
     }
     record_failure();
     r_.optimize_tried.back() += " (not kept)";
-    core::logger().warn("optimize: {}: {}; keeping the first grid's mesh", name, why_);
-    why_.clear();
-    r_.optimize_fallback = first_fallback;
-    grid_and_write(map_, o_.target_hexes, sizing_, out_dir_, r_, wrote_);
-    r_.iterations_optimize = first_iterations;
+    core::logger().warn("optimize: {}: {}; not kept", name, why_);
+    return std::nullopt;
   }
 
   double distance(const core::HexMesh& hex) const { return in_.distances.measure(hex, in_.target).relative; }
@@ -228,6 +295,7 @@ class OptimizeStage {
   std::string why_;
   int checks_ = 0;
   int far_checks_ = 0;
+  std::string gridded_;  //!< step 5: the name of the gridding hex.mesh holds
   bool crossing_ = false;   //!< the last result failed by its boundary crossing itself only
   bool stopped_ = false;    //!< the last optimization stopped after its untangling (first_try_options)
   bool first_grid_ = true;  //!< hex_ comes from the first gridding, unpadded

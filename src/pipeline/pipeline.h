@@ -85,7 +85,8 @@ struct RunOptions {
   //! as failing the fold-over check (optimize_fallbacks); "optimize-crossing-N": the first N
   //! count as meshes whose boundary crosses itself (the stiffer barrier's retry first);
   //! "optimize-distance-N": the first N valid meshes count as too far from the input (1: the
-  //! finer grid for the distance is kept; 2: it is not closer, so the first mesh stays). Empty (the default): never.
+  //! first finer grid of step 5 is kept; 2: it is not closer, so the next one is tried; as many
+  //! as step 5 tries: the first mesh stays). Empty (the default): never.
   std::string inject_failure;
 };
 

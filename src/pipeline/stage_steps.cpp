@@ -25,10 +25,11 @@ void write_vtk(const std::filesystem::path& path, core::MeshData data, std::vect
 
 core::HexMesh grid_and_write(const core::PolycubeMap& map, int target, mesh::GridSizing sizing,
                              const std::filesystem::path& out_dir, RunResult& r,
-                             const FileWritten& wrote) {
+                             const FileWritten& wrote, const std::vector<core::Vec3>& refine_near) {
   mesh::GridOptions go;
   go.target_hexes = target;
   go.sizing = sizing;
+  go.refine_near = refine_near;
   mesh::GridResult g = mesh::grid_polycube(map, go);
   if (!g.snapping.ok())
     throw core::GeometryError("snapping the polycube to the lattice broke it: " + g.snapping.summary());

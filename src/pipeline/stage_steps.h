@@ -33,7 +33,7 @@ void write_vtk(const std::filesystem::path& path, core::MeshData data, std::vect
 //! the gridded mesh's figures in r. Returns the hex mesh.
 core::HexMesh grid_and_write(const core::PolycubeMap& map, int target, mesh::GridSizing sizing,
                              const std::filesystem::path& out_dir, RunResult& r,
-                             const FileWritten& wrote);
+                             const FileWritten& wrote, const std::vector<core::Vec3>& refine_near = {});
 
 //! One line for a fold-over check's failures.
 std::string fold_summary(const optimize::FoldoverReport& fold);

@@ -323,6 +323,24 @@ SurfaceDistance hausdorff_distance(const core::HexMesh& hexes, const core::TriMe
   return hausdorff_distance(triangulate(b.surface), reference, options);
 }
 
+std::vector<Vec3> vertices_farther_than(const core::TriMesh& surface, const core::TriMesh& reference,
+                                        double distance) {
+  check_surface(surface, "surface");
+  check_surface(reference, "reference");
+  const std::vector<Triangle3> tris = tree_triangles(reference, "reference");
+  Tree tree(tris.begin(), tris.end());
+  tree.build();
+  tree.accelerate_distance_queries();
+  std::vector<std::uint8_t> used(surface.points.size(), 0);
+  for (const auto& t : surface.cells)
+    for (int v : t) used[static_cast<std::size_t>(v)] = 1;
+  std::vector<Vec3> out;
+  for (std::size_t v = 0; v < surface.points.size(); ++v)
+    if (used[v] && tree.squared_distance(to_point(surface.points[v])) > distance * distance)
+      out.push_back(surface.points[v]);
+  return out;
+}
+
 const SurfaceDistance* RememberedDistance::find(const core::HexMesh& hex) const {
   if (!distance_ || hex.points != points_ || hex.cells != cells_) return nullptr;
   return &*distance_;

@@ -73,6 +73,11 @@ core::TriMesh triangulate(const core::QuadMesh& quads);
 SurfaceDistance hausdorff_distance(const core::HexMesh& hexes, const core::TriMesh& reference,
                                    const SurfaceDistanceOptions& options = {});
 
+//! The vertices of `surface` (those its triangles use) farther than `distance` from `reference`:
+//! where a mesh misses a surface, in increasing vertex order. \throw as hausdorff_distance
+std::vector<core::Vec3> vertices_farther_than(const core::TriMesh& surface, const core::TriMesh& reference,
+                                              double distance);
+
 //! The distance (default options) of one hex mesh's boundary to one reference surface, kept with
 //! the points and hexes it was measured for. A chain measures the same mesh several times (the
 //! optimizer's last retry, the pipeline's distance check, the final report), and each

@@ -328,6 +328,74 @@ TEST(Grid, MapSizingFollowsTheStretch) {
   }
 }
 
+// refine_near doubles the cells of the intervals between chart planes that hold the point, on
+// each axis, and no others: on the L at scale 4, a point in the corner cube gives its x, y and z
+// intervals 8 cells instead of 4; the per-axis map stays piecewise linear, so the positions are
+// exact. A point on a chart plane refines the intervals on both sides.
+TEST(Grid, RefineNearDoublesTheCellsOfTheIntervalsThatHoldThePoint) {
+  auto affine = [](const Vec3& p) { return Vec3(p.x() + 0.3 * p.z() + 1.0, 0.8 * p.y(), 1.5 * p.z()); };
+  const GridMap g = test::l_shape(2, affine);
+  GridOptions o;
+  o.scale = 4;
+  const std::vector<Vec3> near = polycube_points(g.map, {affine(Vec3(0.5, 0.25, 0.5))});
+  ASSERT_EQ(near.size(), 1u);
+  EXPECT_LT((near[0] - Vec3(0.5, 0.25, 0.5)).norm(), 1e-9);
+  o.refine_near = near;
+  const GridResult r = grid_polycube(g.map, o);
+  // x and y: [0, 1] 8 cells, [1, 2] 4; z: [0, 1] 8. Boxes (0,0), (1,0), (0,1) of the L.
+  EXPECT_EQ(r.hex_polycube.cells.size(), static_cast<std::size_t>(8 * 8 * 8 + 4 * 8 * 8 + 8 * 4 * 8));
+  EXPECT_EQ(r.lattice_max[0] - r.lattice_min[0], 12);
+  EXPECT_EQ(r.lattice_max[1] - r.lattice_min[1], 12);
+  EXPECT_EQ(r.lattice_max[2] - r.lattice_min[2], 8);
+  auto axis = [](double c) { return c <= 8 ? c / 8 : 1 + (c - 8) / 4; };  // lattice -> polycube
+  EXPECT_LT(max_error(r, [&](const Vec3& q) { return affine(Vec3(axis(q.x()), axis(q.y()), q.z() / 8)); }), 1e-9);
+  EXPECT_EQ(r.inverted_model_hexes, 0);
+  EXPECT_TRUE(r.snapping.ok());
+  EXPECT_FALSE(r.snapping.needed);
+  const core::SurfaceReport rep = core::analyze_surface(r.quad_polycube);
+  EXPECT_TRUE(rep.closed);
+  EXPECT_EQ(rep.boundary_edges, 0);
+
+  // On the plane x = 1: both x intervals doubled; y and z as before.
+  o.refine_near = {Vec3(1.0, 0.25, 0.5)};
+  EXPECT_EQ(grid_polycube(g.map, o).hex_polycube.cells.size(), static_cast<std::size_t>(8 * 8 * 8 + 8 * 8 * 8 + 8 * 4 * 8));
+  // Factor 1, or no point: the plain grid.
+  o.refine_factor = 1;
+  EXPECT_EQ(grid_polycube(g.map, o).hex_polycube.cells.size(), static_cast<std::size_t>(3 * 64));
+  o.refine_factor = 0;
+  EXPECT_THROW((void)grid_polycube(g.map, o), core::InputError);
+}
+
+// On an integer polycube the refined cells fill the unit slab around the point, not the whole
+// interval between chart planes: a 4 x 3 x 2 box at scale 1 and a point at (1.5, 0.5, 1.2) get
+// 5 x 4 x 3 cells (x: [0,1] 1, [1,2] 2, [2,4] 2; y: [0,1] 2, [1,3] 2; z: [0,1] 1, [1,2] 2) instead
+// of 4 x 3 x 2, with the positions still exact.
+TEST(Grid, RefineNearFillsTheUnitSlabOfAnIntegerPolycube) {
+  auto shear = [](const Vec3& p) { return Vec3(p.x() + 0.2 * p.y(), p.y(), 0.5 * p.z() + 0.1 * p.x()); };
+  const GridMap g = test::make_grid_map(
+      test::uniform(0, 4, 4), test::uniform(0, 3, 3), test::uniform(0, 2, 2), [](const Vec3&) { return true; },
+      shear);
+  GridOptions o;
+  o.scale = 1;
+  ASSERT_EQ(grid_polycube(g.map, o).hex_polycube.cells.size(), 24u);
+  o.refine_near = {Vec3(1.5, 0.5, 1.2)};
+  const GridResult r = grid_polycube(g.map, o);
+  EXPECT_EQ(r.hex_polycube.cells.size(), 60u);
+  auto piecewise = [](double c, const std::vector<double>& lattice, const std::vector<double>& poly) {
+    std::size_t i = 0;
+    while (i + 2 < lattice.size() && c > lattice[i + 1]) ++i;
+    return poly[i] + (c - lattice[i]) / (lattice[i + 1] - lattice[i]) * (poly[i + 1] - poly[i]);
+  };
+  auto to_model = [&](const Vec3& q) {
+    return shear(Vec3(piecewise(q.x() - r.lattice_min[0], {0, 1, 3, 5}, {0, 1, 2, 4}),
+                      piecewise(q.y() - r.lattice_min[1], {0, 2, 4}, {0, 1, 3}),
+                      piecewise(q.z() - r.lattice_min[2], {0, 1, 3}, {0, 1, 2})));
+  };
+  EXPECT_LT(max_error(r, to_model), 1e-9);
+  EXPECT_EQ(r.inverted_model_hexes, 0);
+  EXPECT_TRUE(r.snapping.ok());
+}
+
 TEST(Grid, MapSizingNeverSnaps) {
   // step_03 has a plane at z = 1.3 (model = polycube): uniform sizing at scale 0.8 merges levels
   // 1 and 1.3; Map sizing gives every interval at least one cell, so nothing collapses

@@ -627,6 +627,41 @@ TEST(RunCli, AMeshTooFarFromTheInputIsGriddedTwiceAsFine) {
         << name;
 }
 
+// Before twice the hexes everywhere, the distance fallback tries the grid with twice the cells in
+// the unit slabs of the polycube that hold the points where the mesh misses the input (here, on
+// the L-bracket sample, counted as too far by `--inject-failure optimize-distance-N`): kept when
+// valid and closer, with fewer hexes than twice the first grid's; when it is not closer either,
+// the grid twice as fine follows.
+TEST(RunCli, AMeshTooFarFromTheInputIsGriddedFinerNearTheFarPointsFirst) {
+  const fs::path dir = temp_dir("optimize_distance_near");
+  ASSERT_EQ(test::run_cli(fmt::format("sample l-bracket -o \"{}\"", (dir / "lb.obj").string())).exit_code, 0);
+  const CliResult plain = run(dir / "lb.obj", dir / "plain", "--hexes 400 --padding none");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  const auto p = read_report(dir / "plain");
+  ASSERT_EQ(p["optimize_fallback"], "none");
+
+  const CliResult near = run(dir / "lb.obj", dir / "near", "--hexes 400 --padding none --inject-failure optimize-distance-1");
+  ASSERT_EQ(near.exit_code, 0) << near.err;
+  const auto n = read_report(dir / "near");
+  EXPECT_EQ(n["optimize_fallback"], "finer grid near the far points (2x cells there)");
+  ASSERT_EQ(n["optimize_tried"].size(), 1u);
+  EXPECT_EQ(n["optimize_tried"][0], "first grid: injected distance");
+  EXPECT_GT(n["hexes"].get<int>(), p["hexes"].get<int>());
+  EXPECT_LE(n["hexes"].get<int>(), 2 * p["hexes"].get<int>());
+  expect_final_mesh_is_the_gridding(dir / "near", n);
+  EXPECT_EQ(n["final"]["inverted"], 0);
+  EXPECT_LE(n["final"]["hausdorff_relative"].get<double>(), 0.009);
+
+  const CliResult twice = run(dir / "lb.obj", dir / "twice", "--hexes 400 --padding none --inject-failure optimize-distance-2");
+  ASSERT_EQ(twice.exit_code, 0) << twice.err;
+  const auto t = read_report(dir / "twice");
+  EXPECT_EQ(t["optimize_fallback"], "finer grid for the distance (2x hexes)");
+  ASSERT_EQ(t["optimize_tried"].size(), 2u);
+  EXPECT_EQ(t["optimize_tried"][1], "finer grid near the far points (2x cells there): injected distance (not kept)");
+  expect_final_mesh_is_the_gridding(dir / "twice", t);
+  EXPECT_EQ(t["final"]["inverted"], 0);
+}
+
 // `--no-simplify` meshes the constructed map, whose chart planes are not on one lattice: on the
 // flange sample at 300 hexes no single scale snaps them (corners pushed onto facets), and the
 // hexmesh stage stopped there. It now grids with the map's own sizing, and says so.
