@@ -324,7 +324,7 @@ void register_run(CLI::App& app) {
       ->check(CLI::IsMember({"input", "construct", "simplify", "fabricate", "hexmesh", "optimize", "quality", "simplify-step-1",
                              "simplify-step-2", "simplify-step-3", "optimize-step-1", "optimize-step-2",
                              "optimize-step-3", "optimize-step-4", "optimize-crossing-1", "optimize-distance-1",
-                             "optimize-distance-2", "pad"}))
+                             "optimize-distance-2", "optimize-distance-3", "pad"}))
       ->group("");
   opts->command = sub;
   std::vector<CLI::Option*> expert = add_repair_options(*sub, opts->run.repair);

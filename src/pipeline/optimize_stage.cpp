@@ -25,6 +25,11 @@ namespace {
 //! itself; optimize::OptimizeOptions::boundary_barrier).
 constexpr double kBarrierRetry = 4.0;
 
+//! At most how many times the first grid's hexes the distance fallback's refinement near the
+//! far points makes (step 5): as many as the grid twice as fine everywhere (the next try), whose
+//! hexes are 2^(1/3) shorter where the refinement's are half as long.
+constexpr double kNearHexes = 2.0;
+
 //! A new gridding of the map for the optimizer.
 struct Regridding {
   std::string name;
@@ -197,10 +202,10 @@ class OptimizeStage {
     const Finer first{r_.optimize_fallback, o_.target_hexes, {}, r_.iterations_optimize};
     Finer kept = first;
     const std::vector<core::Vec3> near = mesh::polycube_points(map_, far_points(d));
-    const Finer tries[] = {{"finer grid near the far points (2x cells there)", o_.target_hexes, near, 0},
-                           {"finer grid for the distance (2x hexes)", 2 * o_.target_hexes, {}, 0}};
+    Finer tries[] = {{"finer grid near the far points (2x cells there)", o_.target_hexes, near, 0},
+                     {"finer grid for the distance (2x hexes)", 2 * o_.target_hexes, {}, 0}};
     gridded_ = first.name;
-    for (const Finer& f : tries) {
+    for (Finer& f : tries) {
       if (far <= bound) break;
       if (kept.name != first.name) record_failure();  // kept, still too far: why_ says how far
       const std::optional<double> closer = try_finer(f, far);
@@ -218,17 +223,19 @@ class OptimizeStage {
     why_.clear();
   }
 
-  //! Where the mesh misses the input by more than the bound: the input's vertices that far from
-  //! the mesh's boundary, the boundary's vertices that far from the input, and the two points
-  //! where the distance is largest (between vertices, and for an injected distance).
+  //! Where the mesh misses the input, the farthest first: the two points where the distance is
+  //! largest (also for an injected distance), then the input's vertices farther than the bound
+  //! from the mesh's boundary and the boundary's vertices farther than it from the input.
   std::vector<core::Vec3> far_points(const quality::SurfaceDistance& d) const {
     const double bound = o_.optimize_options.hausdorff_bound * d.reference_diagonal;
     const core::TriMesh boundary = quality::triangulate(core::boundary(hex_).surface);
-    std::vector<core::Vec3> out = quality::vertices_farther_than(in_.target, boundary, bound);
-    const std::vector<core::Vec3> mesh_side = quality::vertices_farther_than(boundary, in_.target, bound);
-    out.insert(out.end(), mesh_side.begin(), mesh_side.end());
-    out.push_back(d.surface_to_reference.worst_point);
-    out.push_back(d.reference_to_surface.worst_point);
+    std::vector<quality::FarVertex> far = quality::vertices_farther_than(in_.target, boundary, bound);
+    const std::vector<quality::FarVertex> mesh_side = quality::vertices_farther_than(boundary, in_.target, bound);
+    far.insert(far.end(), mesh_side.begin(), mesh_side.end());
+    std::stable_sort(far.begin(), far.end(),
+                     [](const quality::FarVertex& a, const quality::FarVertex& b) { return a.distance > b.distance; });
+    std::vector<core::Vec3> out{d.reference_to_surface.worst_point, d.surface_to_reference.worst_point};
+    for (const quality::FarVertex& v : far) out.push_back(v.point);
     return out;
   }
 
@@ -242,20 +249,26 @@ class OptimizeStage {
 
   //! Grid `f`, optimize it (with step 2 when its boundary crosses itself) and make it the mesh
   //! when it is valid and closer than `far`: returns its distance then, nothing otherwise (the
-  //! reason recorded in optimize_tried). A near refinement that would make more hexes than the
-  //! grid twice as fine is not tried: that one is as fine there, and finer elsewhere.
-  std::optional<double> try_finer(const Finer& f, double far) {
+  //! reason recorded in optimize_tried). A near refinement gets the farthest points whose slabs
+  //! make at most kNearHexes times the first grid's hexes (all of them, else the first half, and
+  //! so on: f.near is the farthest first); beyond that, the grid twice as fine is as fine there,
+  //! and finer elsewhere, so none is tried.
+  std::optional<double> try_finer(Finer& f, double far) {
     gridded_ = f.name;
-    if (!f.near.empty()) {
-      const int plain = r_.hexes;
+    if (f.near.empty())
+      return optimize_finer(f.name, grid_and_write(map_, f.target_hexes, sizing_, out_dir_, r_, wrote_), far);
+    const int plain = r_.hexes;
+    for (std::size_t k = f.near.size(); k > 0; k /= 2) {
+      f.near.resize(k);
       const core::HexMesh grid = grid_and_write(map_, f.target_hexes, sizing_, out_dir_, r_, wrote_, f.near);
-      if (r_.hexes > 2 * plain) {
-        core::logger().info("optimize: {}: {} hexes, more than twice the first grid's; not tried", f.name, r_.hexes);
-        return std::nullopt;
+      if (r_.hexes <= kNearHexes * plain) {
+        core::logger().info("optimize: {}: the slabs of the {} farthest points, {} hexes", f.name, k, r_.hexes);
+        return optimize_finer(f.name, grid, far);
       }
-      return optimize_finer(f.name, grid, far);
     }
-    return optimize_finer(f.name, grid_and_write(map_, f.target_hexes, sizing_, out_dir_, r_, wrote_), far);
+    core::logger().info("optimize: {}: more than {}x the first grid's hexes even for the farthest point; not tried",
+                        f.name, kNearHexes);
+    return std::nullopt;
   }
 
   std::optional<double> optimize_finer(const std::string& name, const core::HexMesh& grid, double far) {

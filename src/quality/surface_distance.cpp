@@ -323,8 +323,8 @@ SurfaceDistance hausdorff_distance(const core::HexMesh& hexes, const core::TriMe
   return hausdorff_distance(triangulate(b.surface), reference, options);
 }
 
-std::vector<Vec3> vertices_farther_than(const core::TriMesh& surface, const core::TriMesh& reference,
-                                        double distance) {
+std::vector<FarVertex> vertices_farther_than(const core::TriMesh& surface, const core::TriMesh& reference,
+                                             double distance) {
   check_surface(surface, "surface");
   check_surface(reference, "reference");
   const std::vector<Triangle3> tris = tree_triangles(reference, "reference");
@@ -334,10 +334,13 @@ std::vector<Vec3> vertices_farther_than(const core::TriMesh& surface, const core
   std::vector<std::uint8_t> used(surface.points.size(), 0);
   for (const auto& t : surface.cells)
     for (int v : t) used[static_cast<std::size_t>(v)] = 1;
-  std::vector<Vec3> out;
-  for (std::size_t v = 0; v < surface.points.size(); ++v)
-    if (used[v] && tree.squared_distance(to_point(surface.points[v])) > distance * distance)
-      out.push_back(surface.points[v]);
+  std::vector<FarVertex> out;
+  for (std::size_t v = 0; v < surface.points.size(); ++v) {
+    if (!used[v]) continue;
+    const double d2 = tree.squared_distance(to_point(surface.points[v]));
+    if (d2 > distance * distance) out.push_back({surface.points[v], std::sqrt(d2)});
+  }
+  std::stable_sort(out.begin(), out.end(), [](const FarVertex& a, const FarVertex& b) { return a.distance > b.distance; });
   return out;
 }
 

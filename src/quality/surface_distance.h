@@ -73,10 +73,17 @@ core::TriMesh triangulate(const core::QuadMesh& quads);
 SurfaceDistance hausdorff_distance(const core::HexMesh& hexes, const core::TriMesh& reference,
                                    const SurfaceDistanceOptions& options = {});
 
+//! A vertex and its distance to the other surface.
+struct FarVertex {
+  core::Vec3 point = core::Vec3::Zero();
+  double distance = 0.0;
+};
+
 //! The vertices of `surface` (those its triangles use) farther than `distance` from `reference`:
-//! where a mesh misses a surface, in increasing vertex order. \throw as hausdorff_distance
-std::vector<core::Vec3> vertices_farther_than(const core::TriMesh& surface, const core::TriMesh& reference,
-                                              double distance);
+//! where a mesh misses a surface, the farthest first (equal distances in vertex order).
+//! \throw as hausdorff_distance
+std::vector<FarVertex> vertices_farther_than(const core::TriMesh& surface, const core::TriMesh& reference,
+                                             double distance);
 
 //! The distance (default options) of one hex mesh's boundary to one reference surface, kept with
 //! the points and hexes it was measured for. A chain measures the same mesh several times (the

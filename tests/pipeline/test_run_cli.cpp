@@ -589,10 +589,12 @@ TEST(RunCli, ABoundaryThatCrossesItselfIsOptimizedAgainWithAStifferBarrierFirst)
 }
 
 // A valid mesh farther from the input than the optimizer's Hausdorff bound (here: counted so by
-// `--inject-failure optimize-distance-1`) is followed by the map gridded twice as fine; the finer
-// mesh is kept when valid and closer, and hex.mesh is its gridding. When the finer mesh is not
-// closer (`optimize-distance-2`), the first mesh stays and hex.mesh is its gridding again.
-TEST(RunCli, AMeshTooFarFromTheInputIsGriddedTwiceAsFine) {
+// `--inject-failure optimize-distance-N`) is followed by the map gridded with twice the cells in
+// the unit slabs of the polycube that hold the points where it misses the input, then (N = 2: not
+// closer either) twice as fine everywhere; a finer mesh is kept when valid and closer, and
+// hex.mesh is its gridding. When none is closer (N = 3), the first mesh stays and hex.mesh is its
+// gridding again.
+TEST(RunCli, AMeshTooFarFromTheInputIsGriddedFinerNearTheFarPointsThenTwiceAsFine) {
   const fs::path dir = temp_dir("optimize_distance");
   write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
   const CliResult plain = run(dir / "box.obj", dir / "plain", "--hexes 200 --padding none");
@@ -600,66 +602,48 @@ TEST(RunCli, AMeshTooFarFromTheInputIsGriddedTwiceAsFine) {
   const auto p = read_report(dir / "plain");
   EXPECT_EQ(p["optimize_fallback"], "none");  // the box's mesh is on its surface
   EXPECT_TRUE(p["optimize_tried"].empty());
+  const int hexes = p["hexes"].get<int>();
 
-  const CliResult finer = run(dir / "box.obj", dir / "finer", "--hexes 200 --padding none --inject-failure optimize-distance-1");
-  ASSERT_EQ(finer.exit_code, 0) << finer.err;
-  const auto f = read_report(dir / "finer");
-  EXPECT_EQ(f["optimize_fallback"], "finer grid for the distance (2x hexes)");
-  ASSERT_EQ(f["optimize_tried"].size(), 1u);
-  EXPECT_EQ(f["optimize_tried"][0], "first grid: injected distance");
-  EXPECT_NE(finer.out.find("regridded: finer grid for the distance (2x hexes)"), std::string::npos) << finer.out;
-  EXPECT_GT(f["hexes"].get<int>(), p["hexes"].get<int>());
-  expect_final_mesh_is_the_gridding(dir / "finer", f);
-  EXPECT_EQ(f["final"]["inverted"], 0);
+  const std::string near_name = "finer grid near the far points (2x cells there)";
+  const std::string twice_name = "finer grid for the distance (2x hexes)";
+  const CliResult near = run(dir / "box.obj", dir / "near", "--hexes 200 --padding none --inject-failure optimize-distance-1");
+  ASSERT_EQ(near.exit_code, 0) << near.err;
+  const auto n = read_report(dir / "near");
+  EXPECT_EQ(n["optimize_fallback"], near_name);
+  ASSERT_EQ(n["optimize_tried"].size(), 1u);
+  EXPECT_EQ(n["optimize_tried"][0], "first grid: injected distance");
+  EXPECT_NE(near.out.find("regridded: " + near_name), std::string::npos) << near.out;
+  EXPECT_GT(n["hexes"].get<int>(), hexes);
+  EXPECT_LE(n["hexes"].get<int>(), 2 * hexes);
+  expect_final_mesh_is_the_gridding(dir / "near", n);
+  EXPECT_EQ(n["final"]["inverted"], 0);
+  EXPECT_LE(n["final"]["hausdorff_relative"].get<double>(), 0.009);
 
-  const CliResult kept = run(dir / "box.obj", dir / "kept", "--hexes 200 --padding none --inject-failure optimize-distance-2");
+  const CliResult twice = run(dir / "box.obj", dir / "twice", "--hexes 200 --padding none --inject-failure optimize-distance-2");
+  ASSERT_EQ(twice.exit_code, 0) << twice.err;
+  const auto t = read_report(dir / "twice");
+  EXPECT_EQ(t["optimize_fallback"], twice_name);
+  ASSERT_EQ(t["optimize_tried"].size(), 2u);
+  EXPECT_EQ(t["optimize_tried"][1], near_name + ": injected distance (not kept)");
+  EXPECT_NE(twice.out.find("regridded: " + twice_name), std::string::npos) << twice.out;
+  EXPECT_GT(t["hexes"].get<int>(), hexes);
+  expect_final_mesh_is_the_gridding(dir / "twice", t);
+  EXPECT_EQ(t["final"]["inverted"], 0);
+
+  const CliResult kept = run(dir / "box.obj", dir / "kept", "--hexes 200 --padding none --inject-failure optimize-distance-3");
   ASSERT_EQ(kept.exit_code, 0) << kept.err;
   const auto k = read_report(dir / "kept");
   EXPECT_EQ(k["optimize_fallback"], "none");
-  ASSERT_EQ(k["optimize_tried"].size(), 2u);
+  ASSERT_EQ(k["optimize_tried"].size(), 3u);
   EXPECT_EQ(k["optimize_tried"][0], "first grid: injected distance");
-  EXPECT_EQ(k["optimize_tried"][1], "finer grid for the distance (2x hexes): injected distance (not kept)");
+  EXPECT_EQ(k["optimize_tried"][1], near_name + ": injected distance (not kept)");
+  EXPECT_EQ(k["optimize_tried"][2], twice_name + ": injected distance (not kept)");
   EXPECT_EQ(k["hexes"], p["hexes"]);
   // The first grid's files, as a run without the fallback writes them.
   for (const char* name : {"hex.mesh", "hex_optimized.mesh"})
     EXPECT_EQ(core::hexes_of(io::read_mesh(dir / "kept" / name)).points,
               core::hexes_of(io::read_mesh(dir / "plain" / name)).points)
         << name;
-}
-
-// Before twice the hexes everywhere, the distance fallback tries the grid with twice the cells in
-// the unit slabs of the polycube that hold the points where the mesh misses the input (here, on
-// the L-bracket sample, counted as too far by `--inject-failure optimize-distance-N`): kept when
-// valid and closer, with fewer hexes than twice the first grid's; when it is not closer either,
-// the grid twice as fine follows.
-TEST(RunCli, AMeshTooFarFromTheInputIsGriddedFinerNearTheFarPointsFirst) {
-  const fs::path dir = temp_dir("optimize_distance_near");
-  ASSERT_EQ(test::run_cli(fmt::format("sample l-bracket -o \"{}\"", (dir / "lb.obj").string())).exit_code, 0);
-  const CliResult plain = run(dir / "lb.obj", dir / "plain", "--hexes 400 --padding none");
-  ASSERT_EQ(plain.exit_code, 0) << plain.err;
-  const auto p = read_report(dir / "plain");
-  ASSERT_EQ(p["optimize_fallback"], "none");
-
-  const CliResult near = run(dir / "lb.obj", dir / "near", "--hexes 400 --padding none --inject-failure optimize-distance-1");
-  ASSERT_EQ(near.exit_code, 0) << near.err;
-  const auto n = read_report(dir / "near");
-  EXPECT_EQ(n["optimize_fallback"], "finer grid near the far points (2x cells there)");
-  ASSERT_EQ(n["optimize_tried"].size(), 1u);
-  EXPECT_EQ(n["optimize_tried"][0], "first grid: injected distance");
-  EXPECT_GT(n["hexes"].get<int>(), p["hexes"].get<int>());
-  EXPECT_LE(n["hexes"].get<int>(), 2 * p["hexes"].get<int>());
-  expect_final_mesh_is_the_gridding(dir / "near", n);
-  EXPECT_EQ(n["final"]["inverted"], 0);
-  EXPECT_LE(n["final"]["hausdorff_relative"].get<double>(), 0.009);
-
-  const CliResult twice = run(dir / "lb.obj", dir / "twice", "--hexes 400 --padding none --inject-failure optimize-distance-2");
-  ASSERT_EQ(twice.exit_code, 0) << twice.err;
-  const auto t = read_report(dir / "twice");
-  EXPECT_EQ(t["optimize_fallback"], "finer grid for the distance (2x hexes)");
-  ASSERT_EQ(t["optimize_tried"].size(), 2u);
-  EXPECT_EQ(t["optimize_tried"][1], "finer grid near the far points (2x cells there): injected distance (not kept)");
-  expect_final_mesh_is_the_gridding(dir / "twice", t);
-  EXPECT_EQ(t["final"]["inverted"], 0);
 }
 
 // `--no-simplify` meshes the constructed map, whose chart planes are not on one lattice: on the
