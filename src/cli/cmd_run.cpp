@@ -293,6 +293,11 @@ void register_run(CLI::App& app) {
                   "written)")
       ->check(cli::in_range(-1.0, 1.0))
       ->capture_default_str();
+  CLI::Option* refine_far =
+      sub->add_flag("--refine-far", opts->run.refine_far,
+                    "When the optimized mesh stays farther from the input than the Hausdorff bound, first grid the map "
+                    "with twice the cells in the slabs of the polycube around the points it misses (fewer hexes than "
+                    "twice as fine everywhere, which follows when that is not enough; the mSJ may be lower)");
   sub->add_flag("--fabricate", opts->run.fabricate,
                 "Also cut the input solid into parts along the simplified map (thesis ch. 6): "
                 "parts/ with part_NN.stl, parts.3mf, exploded.ply/.vtk, parts.json");
@@ -329,6 +334,7 @@ void register_run(CLI::App& app) {
   opts->command = sub;
   std::vector<CLI::Option*> expert = add_repair_options(*sub, opts->run.repair);
   expert.insert(expert.begin(), coarse);
+  expert.insert(expert.begin(), refine_far);
   expert.insert(expert.begin(), decimation.begin(), decimation.end());
   add_expert_options(*sub, expert);
   sub->callback([opts] { run_run(*opts); });

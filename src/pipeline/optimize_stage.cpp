@@ -182,10 +182,11 @@ class OptimizeStage {
 
   //! Step 5. The optimizer's drift and fit retries have already pulled the boundary to the
   //! surface where its hexes allow; a mesh still too far has hexes too coarse for some feature
-  //! (a thin part, a crease between grid planes). First the grid with twice the cells in the
-  //! intervals between chart planes that hold the two farthest points (one on each surface),
-  //! which shortens the hexes there by half at the cost of those slabs only; then, while still
-  //! beyond the bound, the grid twice as fine everywhere (its hexes 2^(1/3) shorter). Each is
+  //! (a thin part, a crease between grid planes). With RunOptions::refine_far, first the grid
+  //! with twice the cells in the unit slabs of the polycube that hold the points where the mesh
+  //! misses the input (try_finer says which), which halves the hexes there at the cost of those
+  //! slabs only; then, while still beyond the bound, the grid twice as fine everywhere (its
+  //! hexes 2^(1/3) shorter). Each is
   //! kept when it is valid and closer than the mesh kept before; the first grid stays otherwise.
   //! hex.mesh is written again for the kept one (gridding is deterministic, and cheap beside an
   //! optimization).
@@ -199,14 +200,16 @@ class OptimizeStage {
     why_ = injected ? std::string("injected distance")
                     : fmt::format("{:.2f} % of the diagonal from the input (bound {:.2f} %)", 100 * far, 100 * bound);
     record_failure();
-    const Finer first{r_.optimize_fallback, o_.target_hexes, {}, r_.iterations_optimize};
+    const Finer first{r_.optimize_fallback, o_.target_hexes, {}, r_.iterations_optimize, false};
     Finer kept = first;
-    const std::vector<core::Vec3> near = mesh::polycube_points(map_, far_points(d));
-    Finer tries[] = {{"finer grid near the far points (2x cells there)", o_.target_hexes, near, 0},
-                     {"finer grid for the distance (2x hexes)", 2 * o_.target_hexes, {}, 0}};
+    const std::vector<core::Vec3> near =
+        o_.refine_far ? mesh::polycube_points(map_, far_points(d)) : std::vector<core::Vec3>{};
+    Finer tries[] = {{"finer grid near the far points (2x cells there)", o_.target_hexes, near, 0, true},
+                     {"finer grid for the distance (2x hexes)", 2 * o_.target_hexes, {}, 0, false}};
     gridded_ = first.name;
     for (Finer& f : tries) {
       if (far <= bound) break;
+      if (f.local && !o_.refine_far) continue;
       if (kept.name != first.name) record_failure();  // kept, still too far: why_ says how far
       const std::optional<double> closer = try_finer(f, far);
       if (!closer) continue;
@@ -245,6 +248,7 @@ class OptimizeStage {
     int target_hexes = 0;
     std::vector<core::Vec3> near;  //!< the points around which the cells are doubled
     int iterations = 0;            //!< the optimizer's iterations for the mesh (once kept)
+    bool local = false;            //!< refined near the far points only (RunOptions::refine_far)
   };
 
   //! Grid `f`, optimize it (with step 2 when its boundary crosses itself) and make it the mesh
@@ -255,7 +259,7 @@ class OptimizeStage {
   //! and finer elsewhere, so none is tried.
   std::optional<double> try_finer(Finer& f, double far) {
     gridded_ = f.name;
-    if (f.near.empty())
+    if (!f.local)
       return optimize_finer(f.name, grid_and_write(map_, f.target_hexes, sizing_, out_dir_, r_, wrote_), far);
     const int plain = r_.hexes;
     for (std::size_t k = f.near.size(); k > 0; k /= 2) {

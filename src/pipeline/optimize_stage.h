@@ -8,11 +8,12 @@
 //!     frees the boundary hexes the gridding squashed; thesis ch. 4);
 //!  4. the map gridded again with its own sizing, then twice as fine, and optimized;
 //!  5. a valid mesh of the first grid (steps 1–2) farther from the input than the optimizer's
-//!     Hausdorff bound (OptimizeOptions::hausdorff_bound): the map gridded with twice the cells in
-//!     the unit slabs of the polycube that hold the points where the mesh misses the input
-//!     (mesh::GridOptions::refine_near; not when that makes more than twice the hexes), then,
-//!     while still beyond the bound, twice as fine everywhere (each with step 2 when its boundary
-//!     crosses itself); a finer mesh is kept when it is valid and closer than the one before.
+//!     Hausdorff bound (OptimizeOptions::hausdorff_bound): with RunOptions::refine_far, the map
+//!     gridded with twice the cells in the unit slabs of the polycube that hold the points where
+//!     the mesh misses the input (mesh::GridOptions::refine_near; not when that makes more than
+//!     twice the hexes); then, while still beyond the bound, twice as fine everywhere (each with
+//!     step 2 when its boundary crosses itself); a finer mesh is kept when it is valid and closer
+//!     than the one before.
 //! Each step runs only when the ones before it left no valid mesh (step 5: a mesh too far).
 //! RunResult::optimize_fallback names the step that gave the mesh ("none": step 1) and
 //! optimize_tried says why each earlier one was not kept.

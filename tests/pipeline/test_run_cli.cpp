@@ -589,13 +589,52 @@ TEST(RunCli, ABoundaryThatCrossesItselfIsOptimizedAgainWithAStifferBarrierFirst)
 }
 
 // A valid mesh farther from the input than the optimizer's Hausdorff bound (here: counted so by
-// `--inject-failure optimize-distance-N`) is followed by the map gridded with twice the cells in
+// `--inject-failure optimize-distance-1`) is followed by the map gridded twice as fine; the finer
+// mesh is kept when valid and closer, and hex.mesh is its gridding. When the finer mesh is not
+// closer (`optimize-distance-2`), the first mesh stays and hex.mesh is its gridding again.
+TEST(RunCli, AMeshTooFarFromTheInputIsGriddedTwiceAsFine) {
+  const fs::path dir = temp_dir("optimize_distance");
+  write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
+  const CliResult plain = run(dir / "box.obj", dir / "plain", "--hexes 200 --padding none");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  const auto p = read_report(dir / "plain");
+  EXPECT_EQ(p["optimize_fallback"], "none");  // the box's mesh is on its surface
+  EXPECT_TRUE(p["optimize_tried"].empty());
+
+  const CliResult finer = run(dir / "box.obj", dir / "finer", "--hexes 200 --padding none --inject-failure optimize-distance-1");
+  ASSERT_EQ(finer.exit_code, 0) << finer.err;
+  const auto f = read_report(dir / "finer");
+  EXPECT_EQ(f["optimize_fallback"], "finer grid for the distance (2x hexes)");
+  ASSERT_EQ(f["optimize_tried"].size(), 1u);
+  EXPECT_EQ(f["optimize_tried"][0], "first grid: injected distance");
+  EXPECT_NE(finer.out.find("regridded: finer grid for the distance (2x hexes)"), std::string::npos) << finer.out;
+  EXPECT_GT(f["hexes"].get<int>(), p["hexes"].get<int>());
+  expect_final_mesh_is_the_gridding(dir / "finer", f);
+  EXPECT_EQ(f["final"]["inverted"], 0);
+
+  const CliResult kept = run(dir / "box.obj", dir / "kept", "--hexes 200 --padding none --inject-failure optimize-distance-2");
+  ASSERT_EQ(kept.exit_code, 0) << kept.err;
+  const auto k = read_report(dir / "kept");
+  EXPECT_EQ(k["optimize_fallback"], "none");
+  ASSERT_EQ(k["optimize_tried"].size(), 2u);
+  EXPECT_EQ(k["optimize_tried"][0], "first grid: injected distance");
+  EXPECT_EQ(k["optimize_tried"][1], "finer grid for the distance (2x hexes): injected distance (not kept)");
+  EXPECT_EQ(k["hexes"], p["hexes"]);
+  // The first grid's files, as a run without the fallback writes them.
+  for (const char* name : {"hex.mesh", "hex_optimized.mesh"})
+    EXPECT_EQ(core::hexes_of(io::read_mesh(dir / "kept" / name)).points,
+              core::hexes_of(io::read_mesh(dir / "plain" / name)).points)
+        << name;
+}
+
+// With --refine-far, a valid mesh farther from the input than the optimizer's Hausdorff bound
+// (here: counted so by `--inject-failure optimize-distance-N`) is followed by the map gridded with twice the cells in
 // the unit slabs of the polycube that hold the points where it misses the input, then (N = 2: not
 // closer either) twice as fine everywhere; a finer mesh is kept when valid and closer, and
 // hex.mesh is its gridding. When none is closer (N = 3), the first mesh stays and hex.mesh is its
 // gridding again.
-TEST(RunCli, AMeshTooFarFromTheInputIsGriddedFinerNearTheFarPointsThenTwiceAsFine) {
-  const fs::path dir = temp_dir("optimize_distance");
+TEST(RunCli, WithRefineFarAMeshTooFarIsGriddedFinerNearTheFarPointsThenTwiceAsFine) {
+  const fs::path dir = temp_dir("optimize_distance_near");
   write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
   const CliResult plain = run(dir / "box.obj", dir / "plain", "--hexes 200 --padding none");
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
@@ -606,7 +645,7 @@ TEST(RunCli, AMeshTooFarFromTheInputIsGriddedFinerNearTheFarPointsThenTwiceAsFin
 
   const std::string near_name = "finer grid near the far points (2x cells there)";
   const std::string twice_name = "finer grid for the distance (2x hexes)";
-  const CliResult near = run(dir / "box.obj", dir / "near", "--hexes 200 --padding none --inject-failure optimize-distance-1");
+  const CliResult near = run(dir / "box.obj", dir / "near", "--hexes 200 --padding none --refine-far --inject-failure optimize-distance-1");
   ASSERT_EQ(near.exit_code, 0) << near.err;
   const auto n = read_report(dir / "near");
   EXPECT_EQ(n["optimize_fallback"], near_name);
@@ -619,7 +658,7 @@ TEST(RunCli, AMeshTooFarFromTheInputIsGriddedFinerNearTheFarPointsThenTwiceAsFin
   EXPECT_EQ(n["final"]["inverted"], 0);
   EXPECT_LE(n["final"]["hausdorff_relative"].get<double>(), 0.009);
 
-  const CliResult twice = run(dir / "box.obj", dir / "twice", "--hexes 200 --padding none --inject-failure optimize-distance-2");
+  const CliResult twice = run(dir / "box.obj", dir / "twice", "--hexes 200 --padding none --refine-far --inject-failure optimize-distance-2");
   ASSERT_EQ(twice.exit_code, 0) << twice.err;
   const auto t = read_report(dir / "twice");
   EXPECT_EQ(t["optimize_fallback"], twice_name);
@@ -630,7 +669,7 @@ TEST(RunCli, AMeshTooFarFromTheInputIsGriddedFinerNearTheFarPointsThenTwiceAsFin
   expect_final_mesh_is_the_gridding(dir / "twice", t);
   EXPECT_EQ(t["final"]["inverted"], 0);
 
-  const CliResult kept = run(dir / "box.obj", dir / "kept", "--hexes 200 --padding none --inject-failure optimize-distance-3");
+  const CliResult kept = run(dir / "box.obj", dir / "kept", "--hexes 200 --padding none --refine-far --inject-failure optimize-distance-3");
   ASSERT_EQ(kept.exit_code, 0) << kept.err;
   const auto k = read_report(dir / "kept");
   EXPECT_EQ(k["optimize_fallback"], "none");
