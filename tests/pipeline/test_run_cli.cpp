@@ -588,6 +588,16 @@ TEST(RunCli, ABoundaryThatCrossesItselfIsOptimizedAgainWithAStifferBarrierFirst)
   // OptimizeFallsBackToPaddingThenNewGriddingsAndTheReportNamesThem).
 }
 
+//! A run whose distance fallback kept nothing has the first grid's files, as a run without the
+//! fallback (`plain`) writes them.
+void expect_the_first_grids_files(const fs::path& kept, const fs::path& plain, const nlohmann::json& k,
+                                  const nlohmann::json& p) {
+  EXPECT_EQ(k["hexes"], p["hexes"]);
+  for (const char* name : {"hex.mesh", "hex_optimized.mesh"})
+    EXPECT_EQ(core::hexes_of(io::read_mesh(kept / name)).points, core::hexes_of(io::read_mesh(plain / name)).points)
+        << name;
+}
+
 // A valid mesh farther from the input than the optimizer's Hausdorff bound (here: counted so by
 // `--inject-failure optimize-distance-1`) is followed by the map gridded twice as fine; the finer
 // mesh is kept when valid and closer, and hex.mesh is its gridding. When the finer mesh is not
@@ -619,12 +629,7 @@ TEST(RunCli, AMeshTooFarFromTheInputIsGriddedTwiceAsFine) {
   ASSERT_EQ(k["optimize_tried"].size(), 2u);
   EXPECT_EQ(k["optimize_tried"][0], "first grid: injected distance");
   EXPECT_EQ(k["optimize_tried"][1], "finer grid for the distance (2x hexes): injected distance (not kept)");
-  EXPECT_EQ(k["hexes"], p["hexes"]);
-  // The first grid's files, as a run without the fallback writes them.
-  for (const char* name : {"hex.mesh", "hex_optimized.mesh"})
-    EXPECT_EQ(core::hexes_of(io::read_mesh(dir / "kept" / name)).points,
-              core::hexes_of(io::read_mesh(dir / "plain" / name)).points)
-        << name;
+  expect_the_first_grids_files(dir / "kept", dir / "plain", k, p);
 }
 
 // With --refine-far, a valid mesh farther from the input than the optimizer's Hausdorff bound
@@ -677,12 +682,7 @@ TEST(RunCli, WithRefineFarAMeshTooFarIsGriddedFinerNearTheFarPointsThenTwiceAsFi
   EXPECT_EQ(k["optimize_tried"][0], "first grid: injected distance");
   EXPECT_EQ(k["optimize_tried"][1], near_name + ": injected distance (not kept)");
   EXPECT_EQ(k["optimize_tried"][2], twice_name + ": injected distance (not kept)");
-  EXPECT_EQ(k["hexes"], p["hexes"]);
-  // The first grid's files, as a run without the fallback writes them.
-  for (const char* name : {"hex.mesh", "hex_optimized.mesh"})
-    EXPECT_EQ(core::hexes_of(io::read_mesh(dir / "kept" / name)).points,
-              core::hexes_of(io::read_mesh(dir / "plain" / name)).points)
-        << name;
+  expect_the_first_grids_files(dir / "kept", dir / "plain", k, p);
 }
 
 // `--no-simplify` meshes the constructed map, whose chart planes are not on one lattice: on the
