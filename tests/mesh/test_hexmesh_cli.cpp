@@ -74,6 +74,24 @@ TEST(HexmeshCli, TextSummaryAndTargetCount) {
   fs::remove_all(f.dir);
 }
 
+// --refine-near takes model-space points: on the identity L at scale 4, the point (0.5, 0.25,
+// 0.5) doubles the cells of its x, y and z unit intervals (Grid.RefineNear... counts the same
+// 1,024 hexes); a malformed point is refused with a message naming the option, and nothing is
+// written.
+TEST(HexmeshCli, RefineNearDoublesTheCellsAroundAModelPoint) {
+  const Files f = write_map("hexmesh_refine", l_shape(2).map);
+  const Cli r = run_polycube("hexmesh " + f.args + " -o " + q(f.dir / "hex.mesh") +
+                             " --scale 4 --refine-near 0.5,0.25,0.5 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["hexes"], 8 * 8 * 8 + 4 * 8 * 8 + 8 * 4 * 8);
+  EXPECT_EQ(core::analyze_volume(core::hexes_of(io::read_mesh(f.dir / "hex.mesh"))).inverted_cells, 0);
+  const Cli bad = run_polycube("hexmesh " + f.args + " -o " + q(f.dir / "bad.mesh") + " --scale 4 --refine-near 0.5,0.25");
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("--refine-near: '0.5,0.25' is not a point x,y,z"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(f.dir / "bad.mesh"));
+  fs::remove_all(f.dir);
+}
+
 TEST(QuadmeshCli, WritesClosedQuadSurface) {
   const Files f = write_map("quadmesh", l_shape(2).map);
   const Cli r =
