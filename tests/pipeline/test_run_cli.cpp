@@ -588,6 +588,28 @@ TEST(RunCli, ABoundaryThatCrossesItselfIsOptimizedAgainWithAStifferBarrierFirst)
   // OptimizeFallsBackToPaddingThenNewGriddingsAndTheReportNamesThem).
 }
 
+//! The box of the distance tests through run without any fallback: its mesh is on its surface.
+nlohmann::json plain_box_run(const fs::path& dir) {
+  write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
+  const CliResult plain = run(dir / "box.obj", dir / "plain", "--hexes 200 --padding none");
+  EXPECT_EQ(plain.exit_code, 0) << plain.err;
+  const auto p = read_report(dir / "plain");
+  EXPECT_EQ(p["optimize_fallback"], "none");
+  EXPECT_TRUE(p["optimize_tried"].empty());
+  return p;
+}
+
+//! A run whose distance fallback kept the finer grid `name`: named in the report and the summary,
+//! more hexes than the first grid's, hex.mesh its gridding, no inverted hex.
+void expect_regridded(const CliResult& r, const fs::path& out, const nlohmann::json& j, const std::string& name,
+                      int first_hexes) {
+  EXPECT_EQ(j["optimize_fallback"], name);
+  EXPECT_NE(r.out.find("regridded: " + name), std::string::npos) << r.out;
+  EXPECT_GT(j["hexes"].get<int>(), first_hexes);
+  expect_final_mesh_is_the_gridding(out, j);
+  EXPECT_EQ(j["final"]["inverted"], 0);
+}
+
 //! A run whose distance fallback kept nothing has the first grid's files, as a run without the
 //! fallback (`plain`) writes them.
 void expect_the_first_grids_files(const fs::path& kept, const fs::path& plain, const nlohmann::json& k,
@@ -604,23 +626,15 @@ void expect_the_first_grids_files(const fs::path& kept, const fs::path& plain, c
 // closer (`optimize-distance-2`), the first mesh stays and hex.mesh is its gridding again.
 TEST(RunCli, AMeshTooFarFromTheInputIsGriddedTwiceAsFine) {
   const fs::path dir = temp_dir("optimize_distance");
-  write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
-  const CliResult plain = run(dir / "box.obj", dir / "plain", "--hexes 200 --padding none");
-  ASSERT_EQ(plain.exit_code, 0) << plain.err;
-  const auto p = read_report(dir / "plain");
-  EXPECT_EQ(p["optimize_fallback"], "none");  // the box's mesh is on its surface
-  EXPECT_TRUE(p["optimize_tried"].empty());
+  const auto p = plain_box_run(dir);
+  ASSERT_FALSE(::testing::Test::HasFailure()) << "the plain run failed";
 
   const CliResult finer = run(dir / "box.obj", dir / "finer", "--hexes 200 --padding none --inject-failure optimize-distance-1");
   ASSERT_EQ(finer.exit_code, 0) << finer.err;
   const auto f = read_report(dir / "finer");
-  EXPECT_EQ(f["optimize_fallback"], "finer grid for the distance (2x hexes)");
+  expect_regridded(finer, dir / "finer", f, "finer grid for the distance (2x hexes)", p["hexes"].get<int>());
   ASSERT_EQ(f["optimize_tried"].size(), 1u);
   EXPECT_EQ(f["optimize_tried"][0], "first grid: injected distance");
-  EXPECT_NE(finer.out.find("regridded: finer grid for the distance (2x hexes)"), std::string::npos) << finer.out;
-  EXPECT_GT(f["hexes"].get<int>(), p["hexes"].get<int>());
-  expect_final_mesh_is_the_gridding(dir / "finer", f);
-  EXPECT_EQ(f["final"]["inverted"], 0);
 
   const CliResult kept = run(dir / "box.obj", dir / "kept", "--hexes 200 --padding none --inject-failure optimize-distance-2");
   ASSERT_EQ(kept.exit_code, 0) << kept.err;
@@ -640,12 +654,8 @@ TEST(RunCli, AMeshTooFarFromTheInputIsGriddedTwiceAsFine) {
 // gridding again.
 TEST(RunCli, WithRefineFarAMeshTooFarIsGriddedFinerNearTheFarPointsThenTwiceAsFine) {
   const fs::path dir = temp_dir("optimize_distance_near");
-  write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
-  const CliResult plain = run(dir / "box.obj", dir / "plain", "--hexes 200 --padding none");
-  ASSERT_EQ(plain.exit_code, 0) << plain.err;
-  const auto p = read_report(dir / "plain");
-  EXPECT_EQ(p["optimize_fallback"], "none");  // the box's mesh is on its surface
-  EXPECT_TRUE(p["optimize_tried"].empty());
+  const auto p = plain_box_run(dir);
+  ASSERT_FALSE(::testing::Test::HasFailure()) << "the plain run failed";
   const int hexes = p["hexes"].get<int>();
 
   const std::string near_name = "finer grid near the far points (2x cells there)";
@@ -653,26 +663,18 @@ TEST(RunCli, WithRefineFarAMeshTooFarIsGriddedFinerNearTheFarPointsThenTwiceAsFi
   const CliResult near = run(dir / "box.obj", dir / "near", "--hexes 200 --padding none --refine-far --inject-failure optimize-distance-1");
   ASSERT_EQ(near.exit_code, 0) << near.err;
   const auto n = read_report(dir / "near");
-  EXPECT_EQ(n["optimize_fallback"], near_name);
+  expect_regridded(near, dir / "near", n, near_name, hexes);
   ASSERT_EQ(n["optimize_tried"].size(), 1u);
   EXPECT_EQ(n["optimize_tried"][0], "first grid: injected distance");
-  EXPECT_NE(near.out.find("regridded: " + near_name), std::string::npos) << near.out;
-  EXPECT_GT(n["hexes"].get<int>(), hexes);
   EXPECT_LE(n["hexes"].get<int>(), 2 * hexes);
-  expect_final_mesh_is_the_gridding(dir / "near", n);
-  EXPECT_EQ(n["final"]["inverted"], 0);
   EXPECT_LE(n["final"]["hausdorff_relative"].get<double>(), 0.009);
 
   const CliResult twice = run(dir / "box.obj", dir / "twice", "--hexes 200 --padding none --refine-far --inject-failure optimize-distance-2");
   ASSERT_EQ(twice.exit_code, 0) << twice.err;
   const auto t = read_report(dir / "twice");
-  EXPECT_EQ(t["optimize_fallback"], twice_name);
+  expect_regridded(twice, dir / "twice", t, twice_name, hexes);
   ASSERT_EQ(t["optimize_tried"].size(), 2u);
   EXPECT_EQ(t["optimize_tried"][1], near_name + ": injected distance (not kept)");
-  EXPECT_NE(twice.out.find("regridded: " + twice_name), std::string::npos) << twice.out;
-  EXPECT_GT(t["hexes"].get<int>(), hexes);
-  expect_final_mesh_is_the_gridding(dir / "twice", t);
-  EXPECT_EQ(t["final"]["inverted"], 0);
 
   const CliResult kept = run(dir / "box.obj", dir / "kept", "--hexes 200 --padding none --refine-far --inject-failure optimize-distance-3");
   ASSERT_EQ(kept.exit_code, 0) << kept.err;
