@@ -130,6 +130,16 @@ class Distance {
     return {d, &*hint_.second};
   }
 
+  //! The last query's closest point, the hint of the next one.
+  const Tree::Point_and_primitive_id& hint() const { return hint_; }
+
+  //! Start from the closest point of a nearby query made elsewhere: CGAL searches the ball
+  //! through the hint, so a hint far away costs much of the tree.
+  void seed(const Tree::Point_and_primitive_id& hint) {
+    hint_ = hint;
+    has_hint_ = true;
+  }
+
  private:
   const Tree& tree_;
   Tree::Point_and_primitive_id hint_;
@@ -176,7 +186,12 @@ struct Refiner {
   void refine(const std::array<Vec3, 3>& v, const std::array<Sample, 3>& s, int depth,
               Partial& acc) {
     const Vec3 c = (v[0] + v[1] + v[2]) / 3.0;
-    const Sample sc = dist(c, acc);
+    refine(v, s, c, dist(c, acc), depth, acc);
+  }
+
+  //! Refine triangle v with corner samples s and the sample sc of its centroid c.
+  void refine(const std::array<Vec3, 3>& v, const std::array<Sample, 3>& s, const Vec3& c,
+              const Sample& sc, int depth, Partial& acc) {
     const double ub = upper_bound(v, s, c, sc);
     if (ub <= std::max(floor, acc.lower) + tolerance || depth >= max_depth) {
       acc.upper = std::max(acc.upper, ub);
@@ -227,12 +242,35 @@ DirectedDistance directed(const core::TriMesh& m, const Tree& tree, double toler
     total.see(p.lower, p.worst);
     total.queries += p.queries;
   }
+
+  // 2. Every triangle's centroid. The refinement accepts a triangle once its upper bound is
+  //    within the tolerance of the floor, so the higher the floor, the fewer splits: where the
+  //    vertices lie on the other surface (a fitted mesh's boundary) their distances are near 0,
+  //    while the largest distance is inside the triangles, which a centroid usually comes close to.
+  std::vector<Vec3> centroid(m.cells.size());
+  std::vector<Sample> cs(m.cells.size());
+  std::vector<Tree::Point_and_primitive_id> closest(m.cells.size());
+  constexpr std::size_t kBlock = 64;
+  std::vector<Partial> centroid_parts((m.cells.size() + kBlock - 1) / kBlock);
+  for_blocks(m.cells.size(), kBlock, [&](std::size_t begin, std::size_t end) {
+    Distance dist(tree);
+    Partial& acc = centroid_parts[begin / kBlock];
+    for (std::size_t f = begin; f < end; ++f) {
+      const auto& t = m.cells[f];
+      centroid[f] = (m.points[t[0]] + m.points[t[1]] + m.points[t[2]]) / 3.0;
+      cs[f] = dist(centroid[f], acc);
+      closest[f] = dist.hint();
+    }
+  });
+  for (const auto& p : centroid_parts) {
+    total.see(p.lower, p.worst);
+    total.queries += p.queries;
+  }
   const double floor = total.lower;
 
-  // 2. Adaptive refinement of every triangle against that floor.
+  // 3. Adaptive refinement of every triangle against that floor.
   const int max_depth =
       depth_cap(m.cells.size(), max_queries > total.queries ? max_queries - total.queries : 0);
-  constexpr std::size_t kBlock = 64;
   std::vector<Partial> parts((m.cells.size() + kBlock - 1) / kBlock);
   for_blocks(m.cells.size(), kBlock, [&](std::size_t begin, std::size_t end) {
     Distance dist(tree);
@@ -242,8 +280,10 @@ DirectedDistance directed(const core::TriMesh& m, const Tree& tree, double toler
       const auto& t = m.cells[f];
       Partial acc;  // per triangle: its own samples tighten only its own pruning
       for (int v : t) acc.see(vs[v].d, m.points[v]);
-      r.refine({m.points[t[0]], m.points[t[1]], m.points[t[2]]}, {vs[t[0]], vs[t[1]], vs[t[2]]}, 0,
-               acc);
+      acc.see(cs[f].d, centroid[f]);
+      dist.seed(closest[f]);
+      r.refine({m.points[t[0]], m.points[t[1]], m.points[t[2]]}, {vs[t[0]], vs[t[1]], vs[t[2]]}, centroid[f],
+               cs[f], 0, acc);
       block.see(acc.lower, acc.worst);
       block.upper = std::max(block.upper, acc.upper);
       block.weighted += acc.weighted;

@@ -5,11 +5,12 @@
 //! guaranteed error bound.
 //!
 //! Method (directed distance from A to B; B in a CGAL AABB tree giving exact point-to-surface
-//! distances d): d is evaluated at every vertex of A, then each triangle T of A is refined
-//! adaptively. With d_c the distance at T's centroid c and d_i at its corners v_i, every point p
-//! of T satisfies d(p) <= U(T) = min(d_c + max_i |v_i - c|, min_i (d_i + max_j |v_j - v_i|)),
-//! because d is 1-Lipschitz. T is accepted when U(T) <= L + tolerance, L the largest distance
-//! found so far (the maximum over A's vertices, or over T's own samples); otherwise it is split
+//! distances d): d is evaluated at every vertex and every triangle's centroid of A, then each
+//! triangle T of A is refined adaptively. With d_c the distance at T's centroid c and d_i at its
+//! corners v_i, every point p of T satisfies
+//! d(p) <= U(T) = min(d_c + max_i |v_i - c|, min_i (d_i + max_j |v_j - v_i|)), because d is
+//! 1-Lipschitz. T is accepted when U(T) <= L + tolerance, L the largest distance found so far
+//! (the maximum over A's vertices and centroids, or over T's own samples); otherwise it is split
 //! in four at its edge midpoints and the children are examined. The result is a lower bound
 //! (a distance actually attained at a sample) and an upper bound (the largest U of the accepted
 //! triangles), at most `tolerance` apart unless the refinement depth cap was reached.

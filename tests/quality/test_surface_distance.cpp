@@ -202,6 +202,48 @@ TEST(HausdorffDistance, DenserSamplingFindsInteriorMaxima) {
   }
 }
 
+//! Triangulated height field z = f(x, y) over the unit square, n × n cells.
+template <class F>
+core::TriMesh height_field(int n, const F& f) {
+  core::TriMesh m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const double x = double(i) / n, y = double(j) / n;
+      m.points.emplace_back(x, y, f(x, y));
+    }
+  auto id = [n](int i, int j) { return j * (n + 1) + i; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      m.cells.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.cells.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return m;
+}
+
+TEST(HausdorffDistance, TrianglesCloseToTheReferenceAreAcceptedAgainstTheFarthestCentroid) {
+  // A flat square of 16 × 16 × 2 triangles against a fine height field that ripples 0.001 around
+  // it and drops by 0.02 in a small well under one triangle's centroid, away from every vertex,
+  // as a fitted mesh's boundary lies on its target but for one place inside a triangle. The
+  // vertices alone see the ripples only: against that floor each rippled triangle would be
+  // refined until its pieces are within the tolerance of its own samples.
+  // The centroids find the well, and against it a rippled triangle is accepted at once.
+  const auto flat = height_field(16, [](double, double) { return 0.0; });
+  const auto& w = flat.cells[2 * (7 * 16 + 7)];
+  const Vec3 well = (flat.points[w[0]] + flat.points[w[1]] + flat.points[w[2]]) / 3.0;
+  const auto rippled = height_field(256, [&](double x, double y) {
+    const double ripple = 0.001 * std::abs(std::remainder(x * 128.0, 1.0)) * 2.0;
+    return (Vec3(x, y, 0) - well).norm() < 0.02 ? -0.02 : ripple;
+  });
+  const auto d = hausdorff_distance(flat, rippled, SurfaceDistanceOptions{1e-3});
+  const double tol = 1e-3 * d.reference_diagonal;
+  EXPECT_GT(d.surface_to_reference.max, 0.01);
+  EXPECT_LE(d.surface_to_reference.upper_bound - d.surface_to_reference.max, tol + 1e-12);
+  EXPECT_LE((d.surface_to_reference.worst_point - well).norm(), 0.03);
+  // Two splits bring a rippled triangle's pieces within the well's depth of their centroids
+  // (1 + 7 + 28 queries with its centroid); refined down to the tolerance it takes hundreds.
+  EXPECT_LE(d.surface_to_reference.queries, 40 * flat.cells.size());
+}
+
 TEST(HausdorffDistance, QueryBudgetIsRespected) {
   // Two differently rotated spheres with a tolerance of 1e-7 of the diagonal: the refinement
   // cannot reach it within 20000 queries and stops at the depth cap; the bounds stay valid,
