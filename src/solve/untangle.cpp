@@ -7,13 +7,13 @@
 #include "core/log.h"
 #include "core/progress.h"
 #include "solve/sparse_solver.h"
+#include "solve/svd3.h"
 
 #include <Eigen/Geometry>
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/LU>
-#include <Eigen/SVD>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
@@ -391,33 +391,6 @@ ElementEnergy energy_derivatives(const Mat3& J, const EnergyTerms& t) {
   return out;
 }
 
-//! Signed SVD J = U diag(s) Vᵀ with U and V rotations and s₂ carrying det J's sign. Jacobi's SVD:
-//! eigenvectors of JᵀJ in closed form were tried and lose the projection's accuracy (1e-7 of |H|
-//! instead of 1e-9) on nearly flat inverted elements, the untangler's hard case.
-// GCC 12 at -O3 warns that Eigen's JacobiSVD may read its singular values uninitialized; they are
-// all written by the sweeps before being read (a known false positive inside Eigen).
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
-void signed_svd(const Mat3& J, Mat3& U, Eigen::Vector3d& s, Mat3& V) {
-  const Eigen::JacobiSVD<Mat3> svd(J, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  U = svd.matrixU();
-  V = svd.matrixV();
-  s = svd.singularValues();
-  if (U.determinant() < 0) {
-    U.col(2) *= -1.0;
-    s[2] *= -1.0;
-  }
-  if (V.determinant() < 0) {
-    V.col(2) *= -1.0;
-    s[2] *= -1.0;
-  }
-}
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
-
 //! PSD projection of the Hessian H of the energy at J from its analytic eigensystem (Smith et al.
 //! 2019, "Analytic eigensystems for isotropic distortion energies"), instead of a 9 × 9 numeric
 //! eigensolver: the energy is invariant under rotations on either side, so in J's signed singular
@@ -428,7 +401,7 @@ Mat9 project_psd(const Mat3& J, const Mat9& H, const EnergyTerms& t) {
   if (Eigen::LLT<Mat9>(H).info() == Eigen::Success) return H;  // already PD: nothing to project
   Mat3 U, V;
   Eigen::Vector3d s;
-  signed_svd(J, U, s, V);
+  signed_svd3(J, U, s, V);
   const Eigen::Vector3d k(s[1] * s[2], s[0] * s[2], s[0] * s[1]);
   Mat3 A = t.c0 * Mat3::Identity() + t.c1 * (s * k.transpose() + k * s.transpose()) + t.c2 * (k * k.transpose());
   for (int z = 0; z < 3; ++z) {
@@ -438,6 +411,10 @@ Mat9 project_psd(const Mat3& J, const Mat9& H, const EnergyTerms& t) {
   }
   Eigen::SelfAdjointEigenSolver<Mat3> scaling;
   scaling.computeDirect(A);
+  // The closed form's eigenvectors lose their accuracy where two eigenvalues (nearly) coincide,
+  // as for a scaled rotation, whose singular values are equal: there the iterative solver.
+  const Eigen::Vector3d& ev = scaling.eigenvalues();  // increasing
+  if (std::min(ev[1] - ev[0], ev[2] - ev[1]) <= 1e-6 * ev.cwiseAbs().maxCoeff()) scaling.compute(A);
   // H is the sum of λ q qᵀ over its 9 eigenpairs: subtracting the negative ones' terms (one to
   // three, usually) projects it at a fraction of the cost of summing the positive ones.
   // The eigenvectors are formed only for the negative eigenvalues (most of the nine are not).
