@@ -107,6 +107,15 @@ struct Partial {
       worst = p;
     }
   }
+
+  //! Take in another part's results (a block's, or a triangle's), in a fixed order.
+  void merge(const Partial& o) {
+    see(o.lower, o.worst);
+    upper = std::max(upper, o.upper);
+    weighted += o.weighted;
+    area += o.area;
+    queries += o.queries;
+  }
 };
 
 //! A measured point: its distance to the other surface and that surface's closest triangle.
@@ -238,10 +247,7 @@ DirectedDistance directed(const core::TriMesh& m, const Tree& tree, double toler
       if (used[v]) vs[v] = dist(m.points[v], acc);
   });
   Partial total;
-  for (const auto& p : vertex_parts) {
-    total.see(p.lower, p.worst);
-    total.queries += p.queries;
-  }
+  for (const auto& p : vertex_parts) total.merge(p);
 
   // 2. Every triangle's centroid. The refinement accepts a triangle once its upper bound is
   //    within the tolerance of the floor, so the higher the floor, the fewer splits: where the
@@ -262,10 +268,7 @@ DirectedDistance directed(const core::TriMesh& m, const Tree& tree, double toler
       closest[f] = dist.hint();
     }
   });
-  for (const auto& p : centroid_parts) {
-    total.see(p.lower, p.worst);
-    total.queries += p.queries;
-  }
+  for (const auto& p : centroid_parts) total.merge(p);
   const double floor = total.lower;
 
   // 3. Adaptive refinement of every triangle against that floor.
@@ -284,20 +287,10 @@ DirectedDistance directed(const core::TriMesh& m, const Tree& tree, double toler
       dist.seed(closest[f]);
       r.refine({m.points[t[0]], m.points[t[1]], m.points[t[2]]}, {vs[t[0]], vs[t[1]], vs[t[2]]}, centroid[f],
                cs[f], 0, acc);
-      block.see(acc.lower, acc.worst);
-      block.upper = std::max(block.upper, acc.upper);
-      block.weighted += acc.weighted;
-      block.area += acc.area;
-      block.queries += acc.queries;
+      block.merge(acc);
     }
   });
-  for (const auto& p : parts) {
-    total.see(p.lower, p.worst);
-    total.upper = std::max(total.upper, p.upper);
-    total.weighted += p.weighted;
-    total.area += p.area;
-    total.queries += p.queries;
-  }
+  for (const auto& p : parts) total.merge(p);
 
   DirectedDistance r;
   r.max = total.lower;
