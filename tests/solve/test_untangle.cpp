@@ -12,6 +12,8 @@
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -198,6 +200,41 @@ TEST(SparseSpdSolver, FactorizesOnTheCallingThreadAlone) {
   if (before < 0) GTEST_SKIP() << "no /proc/self/task to count threads";
   EXPECT_LT(residual, 1e-10);
   EXPECT_EQ(after, before) << "the factorization started threads of its own";
+}
+
+// CHOLMOD's OpenMP regions bind to the program's GOMP_parallel (sparse_solver.cpp), not to
+// libgomp's, and that runs a region's body once on the calling thread, outside any team. Fails
+// when a change of the link stops the program from exporting it (libgomp's would be bound).
+TEST(SparseSpdSolver, OpenMpRegionsRunInline) {
+  void* gomp = dlopen("libgomp.so.1", RTLD_LAZY | RTLD_NOLOAD);
+  if (gomp == nullptr) GTEST_SKIP() << "libgomp is not loaded: CHOLMOD was built without OpenMP";
+  void* bound = dlsym(RTLD_DEFAULT, "GOMP_parallel");
+  void* libgomps = dlsym(gomp, "GOMP_parallel");
+  using NumThreads = int (*)();
+  const auto num_threads = reinterpret_cast<NumThreads>(dlsym(gomp, "omp_get_num_threads"));
+  dlclose(gomp);
+  ASSERT_NE(bound, nullptr);
+  ASSERT_NE(num_threads, nullptr);
+  EXPECT_NE(bound, libgomps) << "CHOLMOD's regions would go through libgomp's teams";
+  struct Seen {
+    int calls = 0;
+    std::thread::id thread;
+    int team = 0;
+    NumThreads num_threads = nullptr;
+  } seen;
+  seen.num_threads = num_threads;
+  using Parallel = void (*)(void (*)(void*), void*, unsigned, unsigned);
+  reinterpret_cast<Parallel>(bound)(
+      [](void* data) {
+        auto* s = static_cast<Seen*>(data);
+        ++s->calls;
+        s->thread = std::this_thread::get_id();
+        s->team = s->num_threads();
+      },
+      &seen, 4, 0);
+  EXPECT_EQ(seen.calls, 1);
+  EXPECT_EQ(seen.thread, std::this_thread::get_id());
+  EXPECT_EQ(seen.team, 1);
 }
 
 // --- untangling -------------------------------------------------------------------------------
