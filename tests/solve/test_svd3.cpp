@@ -1,6 +1,7 @@
 //! Tests of the 3 × 3 signed singular value decomposition (solve/svd3.h) against Eigen's
 //! JacobiSVD, on random matrices and on the untangler's hard cases: flat, inverted, needles,
 //! repeated and zero singular values.
+#include "solve/rotation.h"
 #include "solve/svd3.h"
 
 #include <gtest/gtest.h>
@@ -74,6 +75,36 @@ TEST(SignedSvd3, SmallValuesOfNearlyFlatMatricesToRelativeAccuracy) {
     EXPECT_NEAR(s[2], -1e-10, 1e-5 * 1e-10) << J;
     EXPECT_NEAR(-s[2], Eigen::JacobiSVD<Eigen::Matrix3d>(J).singularValues()[2], 1e-5 * 1e-10) << J;
   }
+}
+
+// closest_rotation (solve/rotation.h), from the signed SVD: a rotation, no farther from J than
+// any other (random rotations and small turns of it), and Eigen's polar factor where J's two
+// smallest singular values differ (elsewhere the closest rotation is not unique).
+TEST(ClosestRotation, IsTheNearestRotationForInvertedAndFlatMatricesToo) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> N;
+  auto rotation = [&] { return Eigen::Quaterniond(N(rng), N(rng), N(rng), N(rng)).normalized().toRotationMatrix(); };
+  int compared = 0;
+  for (const Eigen::Matrix3d& J : hard_and_random_matrices()) {
+    const Eigen::Matrix3d R = solve::closest_rotation(J);
+    EXPECT_LE((R.transpose() * R - Eigen::Matrix3d::Identity()).norm(), 1e-14) << J;
+    EXPECT_NEAR(R.determinant(), 1.0, 1e-14) << J;
+    const double d = (J - R).norm();
+    const double slack = 1e-12 * std::max(1.0, J.norm());
+    for (int k = 0; k < 5; ++k) {
+      EXPECT_LE(d, (J - rotation()).norm() + slack) << J;
+      const Eigen::Matrix3d turn = Eigen::AngleAxisd(1e-3, Eigen::Vector3d(N(rng), N(rng), N(rng)).normalized()).toRotationMatrix();
+      EXPECT_LE(d, (J - turn * R).norm() + slack) << J;
+    }
+    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(J, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    const Eigen::Vector3d sv = svd.singularValues();
+    if (sv[1] - sv[2] < 1e-6 * std::max(sv[0], 1e-300) || sv[1] < 1e-6 * sv[0]) continue;
+    Eigen::Matrix3d U = svd.matrixU();
+    if ((U * svd.matrixV().transpose()).determinant() < 0) U.col(2) = -U.col(2);
+    EXPECT_LE((R - U * svd.matrixV().transpose()).norm(), 1e-9) << J;
+    ++compared;
+  }
+  EXPECT_GT(compared, 2000);
 }
 
 }  // namespace
