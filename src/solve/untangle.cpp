@@ -241,10 +241,25 @@ Assembly build_assembly(const TetElements& el, const LinearReduction& R,
     }
     slots.resize(static_cast<std::size_t>(so[count]));
     tbb::parallel_for(std::size_t{0}, count, [&](std::size_t t) {
+      // A vertex's coordinates are consecutive entries and, when free, consecutive rows of each
+      // column, so the slot below the last one found in a column is usually the next row's:
+      // checked, and searched for only where it is not.
+      thread_local std::vector<int> last_row, last_slot;
+      const int n_entries = off[t + 1] - off[t];
+      last_row.assign(static_cast<std::size_t>(n_entries), -2);
+      last_slot.resize(static_cast<std::size_t>(n_entries));
       int s = so[t];
       for (int p = off[t]; p < off[t + 1]; ++p)
-        for (int q = off[t]; q < off[t + 1]; ++q)
-          if (e[p].col <= e[q].col) slots[s++] = slot_of(e[p].col, e[q].col);
+        for (int q = off[t]; q < off[t + 1]; ++q) {
+          const int r = e[p].col, c = e[q].col;
+          if (r > c) continue;
+          const std::size_t k = static_cast<std::size_t>(q - off[t]);
+          const int next = last_slot[k] + 1;
+          const bool below = r == last_row[k] + 1 && next < outer_ptr[c + 1] && inner_ptr[next] == r;
+          last_slot[k] = below ? next : slot_of(r, c);
+          last_row[k] = r;
+          slots[s++] = last_slot[k];
+        }
     });
   };
   make_slots(a.entries, a.elem_offset, a.elem_slot_offset, a.slots);
