@@ -61,6 +61,8 @@ std::string status_text(int status) {
 //! spun beside ours after every loop (a fifth of the optimizer's time on a small mesh). With
 //! no active parallel level allowed, every region runs on the thread that opens it. The
 //! OpenMP settings belong to the calling thread, so each thread that factorizes makes them.
+//! Where the program's GOMP_parallel (end of this file) is bound, the regions never reach the
+//! runtime and these settings are the fallback for a link where it is not.
 //! Looked up by name, so that any BLAS and any OpenMP runtime link.
 void single_threaded_blas() {
   using SetInt = void (*)(int);
