@@ -20,9 +20,18 @@ namespace polycube::solve {
 
 //! J = U diag(s) Vᵀ with U and V rotations (det +1), |s₀| ≥ |s₁| ≥ |s₂|, s₀, s₁ ≥ 0 and s₂
 //! carrying det J's sign.
-inline void signed_svd3(const Eigen::Matrix3d& J, Eigen::Matrix3d& U, Eigen::Vector3d& s, Eigen::Matrix3d& V) {
-  Eigen::Matrix3d B = J;
-  V.setIdentity();
+//! \param V_start  a rotation to start the sweeps from (null: the identity), e.g. the V of a
+//!                 nearby J: its columns are then nearly orthogonal already and fewer sweeps run
+inline void signed_svd3(const Eigen::Matrix3d& J, Eigen::Matrix3d& U, Eigen::Vector3d& s, Eigen::Matrix3d& V,
+                        const Eigen::Matrix3d* V_start = nullptr) {
+  Eigen::Matrix3d B;
+  if (V_start) {
+    V = *V_start;
+    B.noalias() = J * V;
+  } else {
+    B = J;
+    V.setIdentity();
+  }
   // A pair is orthogonal once its cosine is below this (a few units in the last place): from
   // there one more sweep would change nothing.
   constexpr double kOrthogonal = 1e-15;
@@ -33,7 +42,7 @@ inline void signed_svd3(const Eigen::Matrix3d& J, Eigen::Matrix3d& U, Eigen::Vec
       for (int q = p + 1; q < 3; ++q) {
         const double alpha = B.col(p).squaredNorm(), beta = B.col(q).squaredNorm();
         const double gamma = B.col(p).dot(B.col(q));
-        if (!(std::abs(gamma) > kOrthogonal * std::sqrt(alpha * beta))) continue;
+        if (!(gamma * gamma > kOrthogonal * kOrthogonal * (alpha * beta))) continue;
         rotated = true;
         // The rotation that zeroes the pair's dot product, its smaller angle (Rutishauser).
         const double zeta = (beta - alpha) / (2.0 * gamma);

@@ -132,8 +132,16 @@ struct Assembly {
   // elements
   std::vector<int> elem_offset;       // #T+1 into entries
   std::vector<Entry> entries;
+  // An element with more entries than its 12 local coordinates has derived points (a coordinate
+  // that combines several variables, e.g. a hex's face centroid): its Hessian is first reduced
+  // to its distinct columns (dense, in the parallel phase), so its slots are the upper pairs of
+  // those columns instead of every pair of entries (a hex's centre tet: 300 instead of 2,600).
+  std::vector<int> elem_cols_offset;  // #T+1 into elem_cols (empty range: not reduced)
+  std::vector<int> elem_cols;         // a reduced element's distinct columns, ascending
+  std::vector<int> entry_col;         // #entries: a reduced element's entry's index in its columns
   std::vector<int> elem_slot_offset;  // #T+1 into slots
   std::vector<int> slots;
+  std::vector<int> elem_grad_offset;  // #T+1: an element's gradient values (entries, or columns if reduced)
   // attractions (3 local coordinates each)
   std::vector<int> attr_offset;
   std::vector<Entry> attr_entries;
@@ -228,19 +236,50 @@ Assembly build_assembly(const TetElements& el, const LinearReduction& R,
     PC_REQUIRE(it != e && *it == r, "untangle: missing Hessian slot");
     return static_cast<int>(it - inner_ptr);
   };
+  // The reduced elements (see Assembly): their distinct columns, and each entry's among them.
+  const auto T = static_cast<int>(el.tets.size());
+  a.elem_cols_offset.assign(static_cast<std::size_t>(T) + 1, 0);
+  a.entry_col.assign(a.entries.size(), -1);
+  a.elem_grad_offset.assign(static_cast<std::size_t>(T) + 1, 0);
+  for (int t = 0; t < T; ++t) {
+    const int n_entries = a.elem_offset[t + 1] - a.elem_offset[t];
+    const bool reduced = n_entries > 12;
+    if (reduced) {
+      const auto first = cols.begin() + cols_offset[t], last = cols.begin() + cols_offset[t + 1];
+      a.elem_cols.insert(a.elem_cols.end(), first, last);
+      for (int p = a.elem_offset[t]; p < a.elem_offset[t + 1]; ++p)
+        a.entry_col[p] = static_cast<int>(std::lower_bound(first, last, a.entries[p].col) - first);
+    }
+    a.elem_cols_offset[t + 1] = static_cast<int>(a.elem_cols.size());
+    a.elem_grad_offset[t + 1] = a.elem_grad_offset[t] + (reduced ? cols_offset[t + 1] - cols_offset[t] : n_entries);
+  }
   // Slots of every term's upper pairs (counted first, then filled in parallel).
   auto make_slots = [&](const std::vector<Entry>& e, const std::vector<int>& off, std::vector<int>& so,
-                        std::vector<int>& slots) {
+                        std::vector<int>& slots, const std::vector<int>* reduced_offset) {
     const std::size_t count = off.size() - 1;
+    auto reduced_columns = [&](std::size_t t) {
+      return reduced_offset ? (*reduced_offset)[t + 1] - (*reduced_offset)[t] : 0;
+    };
     so.assign(count + 1, 0);
     for (std::size_t t = 0; t < count; ++t) {
       int pairs = 0;
-      for (int p = off[t]; p < off[t + 1]; ++p)
-        for (int q = off[t]; q < off[t + 1]; ++q) pairs += e[p].col <= e[q].col;
+      if (const int nc = reduced_columns(t); nc > 0) {
+        pairs = nc * (nc + 1) / 2;
+      } else {
+        for (int p = off[t]; p < off[t + 1]; ++p)
+          for (int q = off[t]; q < off[t + 1]; ++q) pairs += e[p].col <= e[q].col;
+      }
       so[t + 1] = so[t] + pairs;
     }
     slots.resize(static_cast<std::size_t>(so[count]));
     tbb::parallel_for(std::size_t{0}, count, [&](std::size_t t) {
+      if (const int nc = reduced_columns(t); nc > 0) {  // upper pairs (i ≤ j) of the columns, row by row
+        const int* c = a.elem_cols.data() + (*reduced_offset)[t];
+        int s = so[t];
+        for (int i = 0; i < nc; ++i)
+          for (int j = i; j < nc; ++j) slots[s++] = slot_of(c[i], c[j]);
+        return;
+      }
       // A vertex's coordinates are consecutive entries and, when free, consecutive rows of each
       // column, so the slot below the last one found in a column is usually the next row's:
       // checked, and searched for only where it is not.
@@ -262,8 +301,8 @@ Assembly build_assembly(const TetElements& el, const LinearReduction& R,
         }
     });
   };
-  make_slots(a.entries, a.elem_offset, a.elem_slot_offset, a.slots);
-  make_slots(a.attr_entries, a.attr_offset, a.attr_slot_offset, a.attr_slots);
+  make_slots(a.entries, a.elem_offset, a.elem_slot_offset, a.slots, &a.elem_cols_offset);
+  make_slots(a.attr_entries, a.attr_offset, a.attr_slot_offset, a.attr_slots, nullptr);
   a.diag_slot.resize(a.n);
   for (int j = 0; j < a.n; ++j) a.diag_slot[j] = slot_of(j, j);
   return a;
@@ -286,6 +325,39 @@ namespace {
 
 using detail::Assembly;
 using detail::Entry;
+
+//! One element's values for the assembly: its Hessian slot by slot (A.slots' order) and its
+//! gradient by entry, or, for a reduced element, Wᵀ H W and Wᵀ g with W the 12 × #columns map of
+//! its entries (each column's sums formed here, in the parallel phase).
+void element_values(const Assembly& A, int t, const Vec12& ge, const Mat12& He, double* hv, double* gv) {
+  const Entry* e = A.entries.data() + A.elem_offset[t];
+  const int ne = A.elem_offset[t + 1] - A.elem_offset[t];
+  const int nc = A.elem_cols_offset[t + 1] - A.elem_cols_offset[t];
+  if (nc == 0) {
+    for (int p = 0; p < ne; ++p) {
+      gv[p] = e[p].coef * ge[e[p].local];
+      for (int q = 0; q < ne; ++q)
+        if (e[p].col <= e[q].col) *hv++ = e[p].coef * e[q].coef * He(e[p].local, e[q].local);
+    }
+    return;
+  }
+  const int* col = A.entry_col.data() + A.elem_offset[t];
+  thread_local std::vector<double> HW, R;  // H W (12 × nc) and Wᵀ H W (nc × nc, upper)
+  HW.assign(static_cast<std::size_t>(12 * nc), 0.0);
+  R.assign(static_cast<std::size_t>(nc * nc), 0.0);
+  for (int q = 0; q < ne; ++q)
+    for (int l = 0; l < 12; ++l) HW[l * nc + col[q]] += e[q].coef * He(l, e[q].local);
+  std::fill(gv, gv + nc, 0.0);
+  for (int p = 0; p < ne; ++p) {
+    const int i = col[p];
+    const double* hw = HW.data() + e[p].local * nc;
+    double* r = R.data() + i * nc;
+    for (int j = i; j < nc; ++j) r[j] += e[p].coef * hw[j];
+    gv[i] += e[p].coef * ge[e[p].local];
+  }
+  for (int i = 0; i < nc; ++i)
+    for (int j = i; j < nc; ++j) *hv++ = R[i * nc + j];
+}
 
 //! Same sparse matrix, entry for entry (structure and values).
 bool same_matrix(const Eigen::SparseMatrix<double, Eigen::RowMajor>& a,
@@ -412,11 +484,14 @@ ElementEnergy energy_derivatives(const Mat3& J, const EnergyTerms& t) {
 //! frame J = U diag(s) Vᵀ (U, V rotations, s₂ carrying det's sign) the Hessian splits into one
 //! 3 × 3 block on the scalings u_a v_aᵀ and three 2 × 2 blocks on the pairs u_a v_bᵀ, u_b v_aᵀ,
 //! whose eigenvalues are c0 ∓ c3·s_z (z the third index).
-Mat9 project_psd(const Mat3& J, const Mat9& H, const EnergyTerms& t) {
+//! `frame`, when given, is the V of the element's last projection: the start of this one's SVD,
+//! and updated.
+Mat9 project_psd(const Mat3& J, const Mat9& H, const EnergyTerms& t, Mat3* frame = nullptr) {
   if (Eigen::LLT<Mat9>(H).info() == Eigen::Success) return H;  // already PD: nothing to project
   Mat3 U, V;
   Eigen::Vector3d s;
-  signed_svd3(J, U, s, V);
+  signed_svd3(J, U, s, V, frame);
+  if (frame) *frame = V;
   const Eigen::Vector3d k(s[1] * s[2], s[0] * s[2], s[0] * s[1]);
   Mat3 A = t.c0 * Mat3::Identity() + t.c1 * (s * k.transpose() + k * s.transpose()) + t.c2 * (k * k.transpose());
   for (int z = 0; z < 3; ++z) {
@@ -424,12 +499,6 @@ Mat9 project_psd(const Mat3& J, const Mat9& H, const EnergyTerms& t) {
     A(a, b) += t.c3 * s[z];
     A(b, a) += t.c3 * s[z];
   }
-  Eigen::SelfAdjointEigenSolver<Mat3> scaling;
-  scaling.computeDirect(A);
-  // The closed form's eigenvectors lose their accuracy where two eigenvalues (nearly) coincide,
-  // as for a scaled rotation, whose singular values are equal: there the iterative solver.
-  const Eigen::Vector3d& ev = scaling.eigenvalues();  // increasing
-  if (std::min(ev[1] - ev[0], ev[2] - ev[1]) <= 1e-6 * ev.cwiseAbs().maxCoeff()) scaling.compute(A);
   // H is the sum of λ q qᵀ over its 9 eigenpairs: subtracting the negative ones' terms (one to
   // three, usually) projects it at a fraction of the cost of summing the positive ones.
   // The eigenvectors are formed only for the negative eigenvalues (most of the nine are not).
@@ -438,9 +507,20 @@ Mat9 project_psd(const Mat3& J, const Mat9& H, const EnergyTerms& t) {
     const Vec9 q = vec(Q);
     P.noalias() -= eigenvalue * (q * q.transpose());
   };
-  for (int i = 0; i < 3; ++i)
-    if (scaling.eigenvalues()[i] < 0)
-      clamp(scaling.eigenvalues()[i], U * scaling.eigenvectors().col(i).asDiagonal() * V.transpose());
+  // The scaling block is usually positive definite (the negative modes are twists and flips):
+  // its eigensystem is needed only where its Cholesky factorization fails.
+  if (Eigen::LLT<Mat3>(A).info() != Eigen::Success) {
+    Eigen::SelfAdjointEigenSolver<Mat3> scaling;
+    scaling.computeDirect(A);
+    // The closed form's eigenvectors lose their accuracy where two eigenvalues (nearly)
+    // coincide, as for a scaled rotation, whose singular values are equal: there the iterative
+    // solver.
+    const Eigen::Vector3d& ev = scaling.eigenvalues();  // increasing
+    if (std::min(ev[1] - ev[0], ev[2] - ev[1]) <= 1e-6 * ev.cwiseAbs().maxCoeff()) scaling.compute(A);
+    for (int i = 0; i < 3; ++i)
+      if (scaling.eigenvalues()[i] < 0)
+        clamp(scaling.eigenvalues()[i], U * scaling.eigenvectors().col(i).asDiagonal() * V.transpose());
+  }
   for (int z = 0; z < 3; ++z) {
     const double flip = t.c0 - t.c3 * s[z], twist = t.c0 + t.c3 * s[z];
     if (!(flip < 0) && !(twist < 0)) continue;
@@ -454,10 +534,11 @@ Mat9 project_psd(const Mat3& J, const Mat9& H, const EnergyTerms& t) {
 }
 
 //! Local gradient and projected Hessian in the 12 coordinates of one element.
-void element_derivatives(const Grad& G, const Mat3& J, double w, double eps, double lambda, Vec12& g, Mat12& H) {
+void element_derivatives(const Grad& G, const Mat3& J, double w, double eps, double lambda, Vec12& g, Mat12& H,
+                         Mat3* frame = nullptr) {
   const EnergyTerms terms = energy_terms(J, eps, lambda);
   const ElementEnergy e = energy_derivatives(J, terms);
-  const Mat9 HJ = project_psd(J, e.hessian, terms);
+  const Mat9 HJ = project_psd(J, e.hessian, terms, frame);
   for (int d = 0; d < 3; ++d) {
     const Eigen::Vector4d gd = G * e.gradient.segment<3>(3 * d);
     for (int i = 0; i < 4; ++i) g[3 * i + d] = w * gd[i];
@@ -469,6 +550,106 @@ void element_derivatives(const Grad& G, const Mat3& J, double w, double eps, dou
         for (int j = 0; j < 4; ++j) H(3 * i + d, 3 * j + f) = w * blk(i, j);
     }
 }
+
+//! The Newton system's gradient and projected Hessian in y, term by term into the pattern of A.
+class NewtonAssembler {
+ public:
+  NewtonAssembler(const TetElements& el, const Assembly& A)
+      : el_(el), A_(A), frames_(static_cast<std::size_t>(el.size()), Mat3::Identity()) {
+    for (int b0 = 0; b0 < el_.size(); b0 += kBlock) {
+      const int b1 = std::min(el_.size(), b0 + kBlock);
+      block_slots_ = std::max(block_slots_, A_.elem_slot_offset[b1] - A_.elem_slot_offset[b0]);
+      block_grads_ = std::max(block_grads_, A_.elem_grad_offset[b1] - A_.elem_grad_offset[b0]);
+    }
+    for (int buf = 0; buf < 2; ++buf) {
+      hl_[buf].resize(static_cast<std::size_t>(block_slots_));
+      gl_[buf].resize(static_cast<std::size_t>(block_grads_));
+    }
+  }
+
+  //! H (A's pattern) and g at x: the elements, then the attractions.
+  void assemble(const Eigen::VectorXd& x, double eps, double lambda, const std::vector<Attraction>& attractions,
+                Eigen::SparseMatrix<double>& H, Eigen::VectorXd& g) {
+    double* hv = H.valuePtr();
+    std::fill(hv, hv + H.nonZeros(), 0.0);
+    g.setZero();
+    add_elements(x, eps, lambda, hv, g);
+    add_attractions(x, attractions, hv, g);
+  }
+
+ private:
+  static constexpr int kBlock = 1024;
+
+  //! Elements in blocks: the values of a block in parallel, then added into H and g in element
+  //! order (the same sums whatever the thread count). The adding is serial, so the next block's
+  //! values are computed meanwhile, in the other buffer.
+  void add_elements(const Eigen::VectorXd& x, double eps, double lambda, double* hv, Eigen::VectorXd& g) {
+    const int T = el_.size();
+    if (T > 0) values(x, eps, lambda, 0, 0);
+    for (int b0 = 0, buf = 0; b0 < T; b0 += kBlock, buf ^= 1) {
+      tbb::task_group next;
+      if (b0 + kBlock < T) next.run([&, b0, buf] { values(x, eps, lambda, b0 + kBlock, buf ^ 1); });
+      add(b0, buf, hv, g);
+      next.wait();
+    }
+  }
+
+  //! The values of the elements of block b0 into buffer buf (element_values), in parallel.
+  void values(const Eigen::VectorXd& x, double eps, double lambda, int b0, int buf) {
+    const int b1 = std::min(el_.size(), b0 + kBlock);
+    tbb::parallel_for(tbb::blocked_range<int>(b0, b1, 64), [&](const tbb::blocked_range<int>& r) {
+      Vec12 ge;
+      Mat12 He;
+      for (int t = r.begin(); t < r.end(); ++t) {
+        const Mat3 J = jacobian(el_.gradients[t], x, el_.tets[t]);
+        element_derivatives(el_.gradients[t], J, el_.weights[t], eps, lambda, ge, He, &frames_[t]);
+        element_values(A_, t, ge, He, hl_[buf].data() + (A_.elem_slot_offset[t] - A_.elem_slot_offset[b0]),
+                       gl_[buf].data() + (A_.elem_grad_offset[t] - A_.elem_grad_offset[b0]));
+      }
+    });
+  }
+
+  //! Block b0's values from buffer buf into H and g, in element order.
+  void add(int b0, int buf, double* hv, Eigen::VectorXd& g) const {
+    const int b1 = std::min(el_.size(), b0 + kBlock);
+    const double* gv = gl_[buf].data();
+    for (int t = b0; t < b1; ++t) {
+      if (A_.elem_cols_offset[t + 1] > A_.elem_cols_offset[t]) {
+        for (int c = A_.elem_cols_offset[t]; c < A_.elem_cols_offset[t + 1]; ++c) g[A_.elem_cols[c]] += *gv++;
+      } else {
+        for (int p = A_.elem_offset[t]; p < A_.elem_offset[t + 1]; ++p) g[A_.entries[p].col] += *gv++;
+      }
+    }
+    const double* v = hl_[buf].data();
+    for (int s = A_.elem_slot_offset[b0]; s < A_.elem_slot_offset[b1]; ++s) hv[A_.slots[s]] += *v++;
+  }
+
+  void add_attractions(const Eigen::VectorXd& x, const std::vector<Attraction>& attractions, double* hv,
+                       Eigen::VectorXd& g) const {
+    for (std::size_t k = 0; k < attractions.size(); ++k) {
+      const Attraction& at = attractions[k];
+      const Eigen::Vector3d ga = 2.0 * at.weight * (x.segment<3>(3 * at.vertex) - at.target).cwiseProduct(at.axis_weights);
+      int s = A_.attr_slot_offset[k];
+      for (int p = A_.attr_offset[k]; p < A_.attr_offset[k + 1]; ++p) {
+        const Entry& ep = A_.attr_entries[p];
+        g[ep.col] += ep.coef * ga[ep.local];
+        for (int q = A_.attr_offset[k]; q < A_.attr_offset[k + 1]; ++q) {
+          const Entry& eq = A_.attr_entries[q];
+          if (ep.col <= eq.col)
+            hv[A_.attr_slots[s++]] += ep.local == eq.local ? 2.0 * at.weight * at.axis_weights[ep.local] * ep.coef * eq.coef : 0.0;
+        }
+      }
+    }
+  }
+
+  const TetElements& el_;
+  const Assembly& A_;
+  int block_slots_ = 0, block_grads_ = 0;
+  std::array<std::vector<double>, 2> hl_, gl_;  // a block's Hessian and gradient values
+  // Each element's last singular frame V: J moves little between Newton steps, so its next SVD
+  // starts there and needs fewer Jacobi rotations (bench/RESULTS.md).
+  std::vector<Mat3> frames_;
+};
 
 }  // namespace
 
@@ -638,11 +819,8 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
   int last_progress = 0;
   double progress_min_det = st.min_det;
 
-  // Element derivatives by blocks, two buffers (see the assembly below).
-  constexpr int kBlock = 1024;
-  std::array<std::vector<Mat12>, 2> Hl{std::vector<Mat12>(kBlock), std::vector<Mat12>(kBlock)};
-  std::array<std::vector<Vec12>, 2> gl{std::vector<Vec12>(kBlock), std::vector<Vec12>(kBlock)};
   Eigen::VectorXd g(n);  // the gradient, refilled every Newton step
+  NewtonAssembler assembler(el, A);
   core::ProgressTask task("untangle", std::max(1, o.max_iterations));
   for (int outer = 0; outer < o.max_iterations; ++outer) {
     task.set(outer);
@@ -654,59 +832,8 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
     for (int step = 0; step < o.newton_steps; ++step) {
       // Assemble the gradient and projected Hessian in y.
       core::Stopwatch phase;
+      assembler.assemble(x, eps, lambda, attractions, H, g);
       double* hv = H.valuePtr();
-      std::fill(hv, hv + H.nonZeros(), 0.0);
-      g.setZero();
-      const int T = el.size();
-      // Elements in blocks: the derivatives of a block in parallel, then added into H and g in
-      // element order (the same sums whatever the thread count). The adding is serial, so the
-      // next block's derivatives are computed meanwhile, in the other buffer.
-      auto derivatives = [&](int b0, int buf) {
-        const int b1 = std::min(T, b0 + kBlock);
-        tbb::parallel_for(tbb::blocked_range<int>(b0, b1, 64), [&](const tbb::blocked_range<int>& r) {
-          for (int t = r.begin(); t < r.end(); ++t) {
-            const Mat3 J = jacobian(el.gradients[t], x, el.tets[t]);
-            element_derivatives(el.gradients[t], J, el.weights[t], eps, lambda, gl[buf][t - b0], Hl[buf][t - b0]);
-          }
-        });
-      };
-      auto add = [&](int b0, int buf) {
-        const int b1 = std::min(T, b0 + kBlock);
-        for (int t = b0; t < b1; ++t) {
-          const Mat12& He = Hl[buf][t - b0];
-          const Vec12& ge = gl[buf][t - b0];
-          int s = A.elem_slot_offset[t];
-          for (int p = A.elem_offset[t]; p < A.elem_offset[t + 1]; ++p) {
-            const Entry& ep = A.entries[p];
-            g[ep.col] += ep.coef * ge[ep.local];
-            for (int q = A.elem_offset[t]; q < A.elem_offset[t + 1]; ++q) {
-              const Entry& eq = A.entries[q];
-              if (ep.col <= eq.col) hv[A.slots[s++]] += ep.coef * eq.coef * He(ep.local, eq.local);
-            }
-          }
-        }
-      };
-      if (T > 0) derivatives(0, 0);
-      for (int b0 = 0, buf = 0; b0 < T; b0 += kBlock, buf ^= 1) {
-        tbb::task_group next;
-        if (b0 + kBlock < T) next.run([&, b0, buf] { derivatives(b0 + kBlock, buf ^ 1); });
-        add(b0, buf);
-        next.wait();
-      }
-      for (std::size_t k = 0; k < attractions.size(); ++k) {
-        const Attraction& at = attractions[k];
-        const Eigen::Vector3d ga = 2.0 * at.weight * (x.segment<3>(3 * at.vertex) - at.target).cwiseProduct(at.axis_weights);
-        int s = A.attr_slot_offset[k];
-        for (int p = A.attr_offset[k]; p < A.attr_offset[k + 1]; ++p) {
-          const Entry& ep = A.attr_entries[p];
-          g[ep.col] += ep.coef * ga[ep.local];
-          for (int q = A.attr_offset[k]; q < A.attr_offset[k + 1]; ++q) {
-            const Entry& eq = A.attr_entries[q];
-            if (ep.col <= eq.col)
-              hv[A.attr_slots[s++]] += ep.local == eq.local ? 2.0 * at.weight * at.axis_weights[ep.local] * ep.coef * eq.coef : 0.0;
-          }
-        }
-      }
       t_assemble += phase.seconds();
       phase.restart();
       // Regularize (translations and other null directions of a projected Hessian).
@@ -831,6 +958,18 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
   res.epsilon = eps;
   res.seconds = clock.seconds();
   return res;
+}
+
+std::pair<Eigen::SparseMatrix<double>, Eigen::VectorXd> detail::newton_system(const TetElements& el,
+                                                                             const LinearReduction& R,
+                                                                             const Eigen::VectorXd& y, double eps,
+                                                                             double lambda,
+                                                                             const std::vector<Attraction>& attr) {
+  const Assembly A = build_assembly(el, R, attr);
+  Eigen::SparseMatrix<double> H = A.H;
+  Eigen::VectorXd g(A.n);
+  NewtonAssembler(el, A).assemble(R.apply(y), eps, lambda, attr, H, g);
+  return {std::move(H), std::move(g)};
 }
 
 }  // namespace polycube::solve

@@ -32,6 +32,7 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace polycube::solve {
@@ -191,6 +192,16 @@ struct UntangleResult {
 //! \throw core::InternalError on inconsistent sizes
 UntangleResult untangle(const TetElements& elements, const LinearReduction& reduction,
                         Eigen::VectorXd& y, const UntangleOptions& options = {});
+
+namespace detail {
+//! The Newton system untangle() assembles at y, exposed for tests: the upper triangle of the
+//! projected Hessian in y (pattern included) and the gradient in y.
+std::pair<Eigen::SparseMatrix<double>, Eigen::VectorXd> newton_system(const TetElements& elements,
+                                                                     const LinearReduction& reduction,
+                                                                     const Eigen::VectorXd& y, double epsilon,
+                                                                     double volume_weight,
+                                                                     const std::vector<Attraction>& attractions = {});
+}  // namespace detail
 
 //! Elliptic energy of one Jacobian (shape + λ·volume terms, weight 1) and its derivatives with
 //! respect to the 9 entries of J in row-major order (exposed for tests and other optimizers).
