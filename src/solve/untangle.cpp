@@ -717,29 +717,49 @@ LinearReduction identity_reduction(int num_points) {
 }
 
 LinearReduction with_derived_points(const LinearReduction& r, const std::vector<DerivedPoint>& points) {
-  const auto rows = static_cast<Eigen::Index>(r.B.rows());
+  // The rows are written straight into the compressed arrays: the old rows copied, each new row
+  // merged from its vertices' rows (the optimizer rebuilds these reductions every round, and a
+  // triplet list of the whole matrix cost a sort and its memory each time).
+  Eigen::SparseMatrix<double, Eigen::RowMajor> base = r.B;
+  base.makeCompressed();
+  const auto rows = static_cast<Eigen::Index>(base.rows());
   const auto extra = static_cast<Eigen::Index>(3 * points.size());
-  std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(static_cast<std::size_t>(r.B.nonZeros()) + 12 * points.size());
-  for (Eigen::Index i = 0; i < rows; ++i)
-    for (decltype(r.B)::InnerIterator it(r.B, i); it; ++it) trip.emplace_back(i, it.col(), it.value());
+  std::vector<int> outer(static_cast<std::size_t>(rows + extra) + 1);
+  std::copy(base.outerIndexPtr(), base.outerIndexPtr() + rows + 1, outer.begin());
+  std::vector<int> inner(base.innerIndexPtr(), base.innerIndexPtr() + base.nonZeros());
+  std::vector<double> value(base.valuePtr(), base.valuePtr() + base.nonZeros());
+  inner.reserve(inner.size() + 12 * points.size());
+  value.reserve(value.size() + 12 * points.size());
   LinearReduction out;
   out.x0 = Eigen::VectorXd::Zero(rows + extra);
   out.x0.head(rows) = r.x0;
+  std::vector<std::pair<int, double>> terms;  // one new row's (column, value), in vertex order
   for (std::size_t k = 0; k < points.size(); ++k)
     for (int d = 0; d < 3; ++d) {
       const Eigen::Index dst = rows + 3 * static_cast<Eigen::Index>(k) + d;
       out.x0[dst] = points[k].offset[d];
+      terms.clear();
       for (int i = 0; i < 4; ++i) {
         if (points[k].vertex[i] < 0) continue;
         const double w = points[k].weight[i];
         const Eigen::Index src = 3 * static_cast<Eigen::Index>(points[k].vertex[i]) + d;
-        for (decltype(r.B)::InnerIterator it(r.B, src); it; ++it) trip.emplace_back(dst, it.col(), w * it.value());
+        for (decltype(base)::InnerIterator it(base, src); it; ++it) terms.emplace_back(static_cast<int>(it.col()), w * it.value());
         out.x0[dst] += w * r.x0[src];
       }
+      // A variable shared by several vertices: summed in vertex order, an exact zero kept.
+      std::stable_sort(terms.begin(), terms.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      for (std::size_t t = 0; t < terms.size(); ++t) {
+        if (t > 0 && terms[t].first == terms[t - 1].first) {
+          value.back() += terms[t].second;
+          continue;
+        }
+        inner.push_back(terms[t].first);
+        value.push_back(terms[t].second);
+      }
+      outer[static_cast<std::size_t>(dst) + 1] = static_cast<int>(inner.size());
     }
-  out.B.resize(rows + extra, r.B.cols());
-  out.B.setFromTriplets(trip.begin(), trip.end());  // a variable shared by two vertices: summed
+  out.B = Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor>>(
+      rows + extra, base.cols(), static_cast<Eigen::Index>(inner.size()), outer.data(), inner.data(), value.data());
   return out;
 }
 
