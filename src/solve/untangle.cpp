@@ -72,7 +72,20 @@ double energy_value(const Mat3& J, double det, double eps, double lambda) {
   return J.squaredNorm() / 3.0 / std::cbrt(c * c) + lambda * (det * det + 1.0) / c;
 }
 
+//! Whether G is the gradient of a right-angled corner along the axes (rows 1–3 diagonal, a_k,
+//! and row 0 = −a): the hex optimizer's elements, whose products with G are scalings.
+bool corner_frame(const Grad& G) {
+  return G(0, 0) == -G(1, 0) && G(0, 1) == -G(2, 1) && G(0, 2) == -G(3, 2) && G(1, 1) == 0 && G(1, 2) == 0 &&
+         G(2, 0) == 0 && G(2, 2) == 0 && G(3, 0) == 0 && G(3, 1) == 0;
+}
+
 Mat3 jacobian(const Grad& G, const Eigen::VectorXd& x, const std::array<int, 4>& tet) {
+  if (corner_frame(G)) {  // J's column k: a_k (x_{k+1} − x_0)
+    const Eigen::Vector3d p0 = x.segment<3>(3 * tet[0]);
+    Mat3 J;
+    for (int k = 0; k < 3; ++k) J.col(k) = G(k + 1, k) * (x.segment<3>(3 * tet[k + 1]) - p0);
+    return J;
+  }
   Mat3 J = Mat3::Zero();
   for (int i = 0; i < 4; ++i) {
     const Eigen::Vector3d p = x.segment<3>(3 * tet[i]);
@@ -534,11 +547,36 @@ Mat9 project_psd(const Mat3& J, const Mat9& H, const EnergyTerms& t, Mat3* frame
 }
 
 //! Local gradient and projected Hessian in the 12 coordinates of one element.
+//! element_derivatives' products with G for a corner frame (corner_frame): with S = diag(a) M
+//! diag(a) for each 3 × 3 block M of HJ, the 4 × 4 block G M Gᵀ is [ΣS, −column sums; −row sums, S].
+void corner_derivatives(const Eigen::Vector3d& a, const Vec9& gradient, const Mat9& HJ, double w, Vec12& g, Mat12& H) {
+  for (int d = 0; d < 3; ++d) {
+    const Eigen::Vector3d v = a.cwiseProduct(gradient.segment<3>(3 * d));
+    g[d] = -w * v.sum();
+    for (int k = 0; k < 3; ++k) g[3 * (k + 1) + d] = w * v[k];
+  }
+  for (int d = 0; d < 3; ++d)
+    for (int f = 0; f < 3; ++f) {
+      const Mat3 S = w * (a.asDiagonal() * HJ.block<3, 3>(3 * d, 3 * f) * a.asDiagonal());
+      const Eigen::Vector3d rows = S.rowwise().sum(), cols = S.colwise().sum().transpose();
+      H(d, f) = rows.sum();
+      for (int k = 0; k < 3; ++k) {
+        H(3 * (k + 1) + d, f) = -rows[k];
+        H(d, 3 * (k + 1) + f) = -cols[k];
+        for (int l = 0; l < 3; ++l) H(3 * (k + 1) + d, 3 * (l + 1) + f) = S(k, l);
+      }
+    }
+}
+
 void element_derivatives(const Grad& G, const Mat3& J, double w, double eps, double lambda, Vec12& g, Mat12& H,
                          Mat3* frame = nullptr) {
   const EnergyTerms terms = energy_terms(J, eps, lambda);
   const ElementEnergy e = energy_derivatives(J, terms);
   const Mat9 HJ = project_psd(J, e.hessian, terms, frame);
+  if (corner_frame(G)) {
+    corner_derivatives(Eigen::Vector3d(G(1, 0), G(2, 1), G(3, 2)), e.gradient, HJ, w, g, H);
+    return;
+  }
   for (int d = 0; d < 3; ++d) {
     const Eigen::Vector4d gd = G * e.gradient.segment<3>(3 * d);
     for (int i = 0; i < 4; ++i) g[3 * i + d] = w * gd[i];

@@ -2,7 +2,8 @@
 // chain rule written out densely: g_y = Σ_t B_tᵀ g_t and H_y = Σ_t B_tᵀ H_t B_t (+ attractions),
 // with B_t the rows of the reduction at element t's points. Elements on derived points (a hex's
 // face centroids and the tips built from them) take the assembly's reduced path, the others its
-// direct one; shared and fixed coordinates are in both.
+// direct one; shared and fixed coordinates are in both; two elements have the hex optimizer's
+// right-angled corner frames (the assembly's scaling path).
 #include "solve/untangle.h"
 
 #include <gtest/gtest.h>
@@ -83,6 +84,19 @@ Problem make_problem(bool derived, double amplitude, unsigned seed) {
       tets.push_back(oriented(t, ref));
   }
   p.elements = reference_elements(ref, tets);
+  // Two corner tets of the cube with the hex optimizer's right-angled frames (the assembly's
+  // scaling path), axes of lengths 0.9, 1.1 and 1.3.
+  for (const std::array<int, 4>& corner : {std::array<int, 4>{0, 1, 3, 4}, std::array<int, 4>{6, 7, 5, 2}}) {
+    Eigen::Matrix<double, 4, 3> G = Eigen::Matrix<double, 4, 3>::Zero();
+    const Vec3 l(0.9, 1.1, 1.3);
+    for (int d = 0; d < 3; ++d) {
+      G(d + 1, d) = 1.0 / l[d];
+      G(0, d) = -1.0 / l[d];
+    }
+    p.elements.tets.push_back(corner);
+    p.elements.gradients.push_back(G);
+    p.elements.weights.push_back(l.prod() / 6.0);
+  }
   p.y = Eigen::VectorXd::Zero(n);
   for (int v = 0; v < 8; ++v)
     for (int d = 0; d < 3; ++d)
