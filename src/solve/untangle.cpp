@@ -66,10 +66,10 @@ Vec9 vec(const Mat3& m) {
   return v;
 }
 
-//! Value only (fast path for line searches).
-double energy_value(const Mat3& J, double det, double eps, double lambda) {
+//! Value only (fast path for line searches), from |J|² and det J.
+double energy_value(double squared_norm, double det, double eps, double lambda) {
   const double c = chi(det, eps);
-  return J.squaredNorm() / 3.0 / std::cbrt(c * c) + lambda * (det * det + 1.0) / c;
+  return squared_norm / 3.0 / std::cbrt(c * c) + lambda * (det * det + 1.0) / c;
 }
 
 //! Whether G is the gradient of a right-angled corner along the axes (rows 1–3 diagonal, a_k,
@@ -413,11 +413,17 @@ struct Stats {
   int inverted = 0;
 };
 
+//! Each element's |J|² and det J at some x: all the energy depends on, so a change of ε alone
+//! needs no Jacobian again.
+using Invariants = std::vector<std::array<double, 2>>;
+
 //! Energy, min det and #inverted at x (parallel over elements, deterministic reduction order
-//! within fixed blocks).
+//! within fixed blocks). With `known`, the elements' invariants at x are taken from there;
+//! else they are computed, and kept in `keep` when given.
 Stats evaluate(const TetElements& el, const std::vector<Attraction>& attr, const Eigen::VectorXd& x, double eps,
-               double lambda, double det_target) {
+               double lambda, double det_target, Invariants* keep = nullptr, const Invariants* known = nullptr) {
   const int T = el.size();
+  if (keep) keep->resize(static_cast<std::size_t>(T));
   constexpr int kBlock = 2048;
   const int nb = (T + kBlock - 1) / kBlock;
   std::vector<Stats> part(static_cast<std::size_t>(nb));
@@ -425,11 +431,18 @@ Stats evaluate(const TetElements& el, const std::vector<Attraction>& attr, const
     Stats s;
     const int e = std::min(T, (b + 1) * kBlock);
     for (int t = b * kBlock; t < e; ++t) {
-      const Mat3 J = jacobian(el.gradients[t], x, el.tets[t]);
-      const double det = J.determinant();
+      std::array<double, 2> inv;
+      if (known) {
+        inv = (*known)[t];
+      } else {
+        const Mat3 J = jacobian(el.gradients[t], x, el.tets[t]);
+        inv = {J.squaredNorm(), J.determinant()};
+        if (keep) (*keep)[t] = inv;
+      }
+      const double det = inv[1];
       s.min_det = std::min(s.min_det, det);
       s.inverted += det <= det_target;
-      s.energy += el.weights[t] * energy_value(J, det, eps, lambda);
+      s.energy += el.weights[t] * energy_value(inv[0], det, eps, lambda);
     }
     part[static_cast<std::size_t>(b)] = s;
   });
@@ -831,7 +844,9 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
   const double det_target = o.min_det_target;
   Eigen::VectorXd x = R.apply(y);
   double eps = std::max(o.initial_epsilon, o.min_epsilon);
-  Stats st = evaluate(el, attractions, x, eps, lambda, det_target);
+  // The invariants at x (the last accepted point) and at the line search's trial.
+  Invariants at_x, at_trial;
+  Stats st = evaluate(el, attractions, x, eps, lambda, det_target, &at_x);
   res.inverted_before = st.inverted;
   res.min_det_before = st.min_det;
   if (el.size() == 0 || R.num_variables() == 0) {
@@ -883,7 +898,7 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
   for (int outer = 0; outer < o.max_iterations; ++outer) {
     task.set(outer);
     ++res.iterations;
-    st = evaluate(el, attractions, x, eps, lambda, det_target);
+    st = evaluate(el, attractions, x, eps, lambda, det_target, nullptr, &at_x);  // ε (and targets) changed
     const double E_prev = st.energy;
     // The stats at x as the steps move it (each accepted trial's): no evaluation twice.
     Stats here = st;
@@ -957,11 +972,12 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
       for (int ls = 0; ls < 40; ++ls, alpha *= 0.5) {
         const Eigen::VectorXd yt = y + alpha * dir;
         const Eigen::VectorXd xt = R.apply(yt);
-        const Stats trial = evaluate(el, attractions, xt, eps, lambda, det_target);
+        const Stats trial = evaluate(el, attractions, xt, eps, lambda, det_target, &at_trial);
         if (std::isfinite(trial.energy) && trial.energy <= cur.energy + 1e-4 * alpha * slope &&
             (!keep_valid || trial.inverted == 0)) {
           y = yt;
           x = xt;
+          at_x.swap(at_trial);
           here = trial;
           accepted = true;
           break;
