@@ -355,21 +355,21 @@ void element_values(const Assembly& A, int t, const Vec12& ge, const Mat12& He, 
     return;
   }
   const int* col = A.entry_col.data() + A.elem_offset[t];
-  thread_local std::vector<double> HW, R;  // H W (12 × nc) and Wᵀ H W (nc × nc, upper)
+  thread_local std::vector<double> HW;  // H W (12 × nc)
   HW.assign(static_cast<std::size_t>(12 * nc), 0.0);
-  R.assign(static_cast<std::size_t>(nc * nc), 0.0);
   for (int q = 0; q < ne; ++q)
     for (int l = 0; l < 12; ++l) HW[l * nc + col[q]] += e[q].coef * He(l, e[q].local);
+  // Wᵀ H W's upper triangle straight into the slot values (row i's pairs start at
+  // i·nc − i(i−1)/2, in A.slots' order).
+  std::fill(hv, hv + nc * (nc + 1) / 2, 0.0);
   std::fill(gv, gv + nc, 0.0);
   for (int p = 0; p < ne; ++p) {
     const int i = col[p];
     const double* hw = HW.data() + e[p].local * nc;
-    double* r = R.data() + i * nc;
+    double* r = hv + i * nc - i * (i - 1) / 2 - i;  // r[j] is pair (i, j)
     for (int j = i; j < nc; ++j) r[j] += e[p].coef * hw[j];
     gv[i] += e[p].coef * ge[e[p].local];
   }
-  for (int i = 0; i < nc; ++i)
-    for (int j = i; j < nc; ++j) *hv++ = R[i * nc + j];
 }
 
 //! Same sparse matrix, entry for entry (structure and values).
