@@ -510,23 +510,14 @@ ElementEnergy energy_derivatives(const Mat3& J, const EnergyTerms& t) {
 //! frame J = U diag(s) Vᵀ (U, V rotations, s₂ carrying det's sign) the Hessian splits into one
 //! 3 × 3 block on the scalings u_a v_aᵀ and three 2 × 2 blocks on the pairs u_a v_bᵀ, u_b v_aᵀ,
 //! whose eigenvalues are c0 ∓ c3·s_z (z the third index).
-//! What an element's last projection left for its next (the Newton steps move J little).
-struct ProjectionState {
-  Mat3 frame = Mat3::Identity();  //!< its V: the start of the next SVD
-  bool clamped = false;           //!< it had negative eigenvalues: the next skips the PD test
-};
-
-//! `state`, when given, is the element's ProjectionState, used and updated.
-Mat9 project_psd(const Mat3& J, const Mat9& H, const EnergyTerms& t, ProjectionState* state = nullptr) {
-  // Already PD: nothing to project. Most elements are not (a rotation's twist modes have
-  // eigenvalue 0 at rest), and an element that was not stays so from step to step: those skip
-  // the test, and the eigensystem below finds the same (P = H when nothing is negative).
-  if (!(state && state->clamped) && Eigen::LLT<Mat9>(H).info() == Eigen::Success) return H;
+//! `frame`, when given, is the V of the element's last projection: the start of this one's SVD,
+//! and updated.
+Mat9 project_psd(const Mat3& J, const Mat9& H, const EnergyTerms& t, Mat3* frame = nullptr) {
+  if (Eigen::LLT<Mat9>(H).info() == Eigen::Success) return H;  // already PD: nothing to project
   Mat3 U, V;
   Eigen::Vector3d s;
-  signed_svd3(J, U, s, V, state ? &state->frame : nullptr);
-  if (state) state->frame = V;
-  bool clamped = false;
+  signed_svd3(J, U, s, V, frame);
+  if (frame) *frame = V;
   const Eigen::Vector3d k(s[1] * s[2], s[0] * s[2], s[0] * s[1]);
   Mat3 A = t.c0 * Mat3::Identity() + t.c1 * (s * k.transpose() + k * s.transpose()) + t.c2 * (k * k.transpose());
   for (int z = 0; z < 3; ++z) {
@@ -541,7 +532,6 @@ Mat9 project_psd(const Mat3& J, const Mat9& H, const EnergyTerms& t, ProjectionS
   auto clamp = [&](double eigenvalue, const Mat3& Q) {
     const Vec9 q = vec(Q);
     P.noalias() -= eigenvalue * (q * q.transpose());
-    clamped = true;
   };
   // The scaling block is usually positive definite (the negative modes are twists and flips):
   // its eigensystem is needed only where its Cholesky factorization fails.
@@ -566,7 +556,6 @@ Mat9 project_psd(const Mat3& J, const Mat9& H, const EnergyTerms& t, ProjectionS
     if (flip < 0) clamp(flip, ab + ba);
     if (twist < 0) clamp(twist, ab - ba);
   }
-  if (state) state->clamped = clamped;
   return P;
 }
 
@@ -593,10 +582,10 @@ void corner_derivatives(const Eigen::Vector3d& a, const Vec9& gradient, const Ma
 }
 
 void element_derivatives(const Grad& G, const Mat3& J, double w, double eps, double lambda, Vec12& g, Mat12& H,
-                         ProjectionState* state = nullptr) {
+                         Mat3* frame = nullptr) {
   const EnergyTerms terms = energy_terms(J, eps, lambda);
   const ElementEnergy e = energy_derivatives(J, terms);
-  const Mat9 HJ = project_psd(J, e.hessian, terms, state);
+  const Mat9 HJ = project_psd(J, e.hessian, terms, frame);
   if (corner_frame(G)) {
     corner_derivatives(Eigen::Vector3d(G(1, 0), G(2, 1), G(3, 2)), e.gradient, HJ, w, g, H);
     return;
@@ -617,7 +606,7 @@ void element_derivatives(const Grad& G, const Mat3& J, double w, double eps, dou
 class NewtonAssembler {
  public:
   NewtonAssembler(const TetElements& el, const Assembly& A)
-      : el_(el), A_(A), projections_(static_cast<std::size_t>(el.size())) {
+      : el_(el), A_(A), frames_(static_cast<std::size_t>(el.size()), Mat3::Identity()) {
     for (int b0 = 0; b0 < el_.size(); b0 += kBlock) {
       const int b1 = std::min(el_.size(), b0 + kBlock);
       block_slots_ = std::max(block_slots_, A_.elem_slot_offset[b1] - A_.elem_slot_offset[b0]);
@@ -664,7 +653,7 @@ class NewtonAssembler {
       Mat12 He;
       for (int t = r.begin(); t < r.end(); ++t) {
         const Mat3 J = jacobian(el_.gradients[t], x, el_.tets[t]);
-        element_derivatives(el_.gradients[t], J, el_.weights[t], eps, lambda, ge, He, &projections_[t]);
+        element_derivatives(el_.gradients[t], J, el_.weights[t], eps, lambda, ge, He, &frames_[t]);
         element_values(A_, t, ge, He, hl_[buf].data() + (A_.elem_slot_offset[t] - A_.elem_slot_offset[b0]),
                        gl_[buf].data() + (A_.elem_grad_offset[t] - A_.elem_grad_offset[b0]));
       }
@@ -708,10 +697,9 @@ class NewtonAssembler {
   const Assembly& A_;
   int block_slots_ = 0, block_grads_ = 0;
   std::array<std::vector<double>, 2> hl_, gl_;  // a block's Hessian and gradient values
-  // Each element's last projection (its singular frame V, whether it had negative modes): J
-  // moves little between Newton steps, so its next SVD starts there and needs fewer Jacobi
-  // rotations, and an element that needed projecting skips the PD test (bench/RESULTS.md).
-  std::vector<ProjectionState> projections_;
+  // Each element's last singular frame V: J moves little between Newton steps, so its next SVD
+  // starts there and needs fewer Jacobi rotations (bench/RESULTS.md).
+  std::vector<Mat3> frames_;
 };
 
 }  // namespace
