@@ -559,7 +559,6 @@ Mat9 project_psd(const Mat3& J, const Mat9& H, const EnergyTerms& t, Mat3* frame
   return P;
 }
 
-//! Local gradient and projected Hessian in the 12 coordinates of one element.
 //! element_derivatives' products with G for a corner frame (corner_frame): with S = diag(a) M
 //! diag(a) for each 3 × 3 block M of HJ, the 4 × 4 block G M Gᵀ is [ΣS, −column sums; −row sums, S].
 void corner_derivatives(const Eigen::Vector3d& a, const Vec9& gradient, const Mat9& HJ, double w, Vec12& g, Mat12& H) {
@@ -581,6 +580,7 @@ void corner_derivatives(const Eigen::Vector3d& a, const Vec9& gradient, const Ma
     }
 }
 
+//! Local gradient and projected Hessian in the 12 coordinates of one element.
 void element_derivatives(const Grad& G, const Mat3& J, double w, double eps, double lambda, Vec12& g, Mat12& H,
                          Mat3* frame = nullptr) {
   const EnergyTerms terms = energy_terms(J, eps, lambda);
@@ -771,8 +771,12 @@ LinearReduction with_derived_points(const LinearReduction& r, const std::vector<
   // The rows are written straight into the compressed arrays: the old rows copied, each new row
   // merged from its vertices' rows (the optimizer rebuilds these reductions every round, and a
   // triplet list of the whole matrix cost a sort and its memory each time).
-  Eigen::SparseMatrix<double, Eigen::RowMajor> base = r.B;
-  base.makeCompressed();
+  Eigen::SparseMatrix<double, Eigen::RowMajor> compressed;  // only for an uncompressed input
+  if (!r.B.isCompressed()) {
+    compressed = r.B;
+    compressed.makeCompressed();
+  }
+  const Eigen::SparseMatrix<double, Eigen::RowMajor>& base = r.B.isCompressed() ? r.B : compressed;
   const auto rows = static_cast<Eigen::Index>(base.rows());
   const auto extra = static_cast<Eigen::Index>(3 * points.size());
   std::vector<int> outer(static_cast<std::size_t>(rows + extra) + 1);
@@ -794,7 +798,7 @@ LinearReduction with_derived_points(const LinearReduction& r, const std::vector<
         if (points[k].vertex[i] < 0) continue;
         const double w = points[k].weight[i];
         const Eigen::Index src = 3 * static_cast<Eigen::Index>(points[k].vertex[i]) + d;
-        for (decltype(base)::InnerIterator it(base, src); it; ++it) terms.emplace_back(static_cast<int>(it.col()), w * it.value());
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(base, src); it; ++it) terms.emplace_back(static_cast<int>(it.col()), w * it.value());
         out.x0[dst] += w * r.x0[src];
       }
       // A variable shared by several vertices: summed in vertex order, an exact zero kept.
