@@ -133,6 +133,12 @@ void register_optimize(CLI::App& app) {
   sub->add_option("--untangle-iterations", oo.untangle_iterations, "Outer iterations of the untangling at most")
       ->check(cli::non_negative())
       ->capture_default_str();
+  sub->add_option("--untangle-rings", oo.local_untangle_rings,
+                  "Untangle first only the hexes within this many rings of the inverted ones, the rest of the mesh "
+                  "kept as it is, and the whole mesh only when that is not enough: for a mesh that was optimized "
+                  "before a local change (0: the whole mesh at once)")
+      ->check(cli::non_negative())
+      ->capture_default_str();
   sub->add_option("--quality-rounds", oo.quality_rounds, "Quality rounds (each reweights the worst hexes)")
       ->check(cli::non_negative())
       ->capture_default_str();

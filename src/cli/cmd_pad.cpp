@@ -250,6 +250,12 @@ void register_pad(CLI::App& app) {
                   "Where the new layer starts: this fraction of the local edge length inside the padded facets' hexes")
       ->check(cli::in_range(0.01, 0.9))
       ->capture_default_str();
+  sub->add_option("--untangle-rings", opts->pad.optimize.local_untangle_rings,
+                  "The optimization first untangles only the hexes within this many rings of those the new layer "
+                  "inverted, the rest of the mesh kept as it is, and the whole mesh only when that is not enough "
+                  "(0: the whole mesh at once, which relaxes the already optimized part too)")
+      ->check(cli::non_negative())
+      ->capture_default_str();
   sub->add_option("--vtk", opts->vtk, "Also write the padded mesh as VTK with the cell fields padding_layer, "
                                       "source_hex and block (for ParaView)");
   sub->add_option("--report", opts->report, "Also write the report as JSON to this file");

@@ -287,13 +287,14 @@ Problem make_problem(core::HexMesh& mesh, const TargetSurface& target,
   return pb;
 }
 
-//! y of the reduction for the current points (corners excluded).
+//! y of the reduction (an index reduction: each variable is one coordinate, coefficient 1) for
+//! the current points.
 Eigen::VectorXd variables_of(const Problem& pb, const core::HexMesh& mesh) {
+  const auto& B = pb.reduction.B;
   Eigen::VectorXd y(pb.reduction.num_variables());
-  int k = 0;
-  for (int v = 0; v < mesh.num_points(); ++v)
-    if (pb.roles.role[v] != VertexRole::Corner)
-      for (int d = 0; d < 3; ++d) y[k++] = mesh.points[v][d];
+  for (int r = 0; r < B.rows(); ++r)
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(B, r); it; ++it)
+      y[it.col()] = mesh.points[r / 3][r % 3];
   return y;
 }
 
@@ -314,6 +315,8 @@ struct Optimization {
   const OptimizeOptions& o;
   //! The Newton system's pattern, shared by the runs on the same elements (solve/untangle.h).
   std::shared_ptr<solve::PatternCache> pattern = solve::make_pattern_cache();
+  //! Only a region of the mesh moves (local_problem): the elements that cannot move are dropped.
+  bool local = false;
 
   [[nodiscard]] solve::TetElements elements() const {
     return corner_elements(mesh, lengths, multiplier);
@@ -324,6 +327,25 @@ struct Optimization {
   //! The boundary's Hausdorff distance to the target, relative to its bounding-box diagonal.
   [[nodiscard]] double hausdorff() { return distances.measure(mesh, target_mesh).relative; }
 };
+
+//! Drop the elements none of whose points moves with the reduction's variables: constants of the
+//! energy, and a local untangling's cost is then that of its region only.
+void drop_fixed_elements(const solve::LinearReduction& reduction, solve::TetElements& el) {
+  const auto& B = reduction.B;
+  const auto moves = [&](int p) {
+    for (int d = 0; d < 3; ++d)
+      if (B.outerIndexPtr()[3 * p + d + 1] > B.outerIndexPtr()[3 * p + d]) return true;
+    return false;
+  };
+  solve::TetElements kept;
+  for (int t = 0; t < el.size(); ++t) {
+    if (std::none_of(el.tets[t].begin(), el.tets[t].end(), moves)) continue;
+    kept.tets.push_back(el.tets[t]);
+    kept.gradients.push_back(el.gradients[t]);
+    kept.weights.push_back(el.weights[t]);
+  }
+  el = std::move(kept);
+}
 
 //! Optimize the mesh's points from their current positions. With o.boundary_barrier > 0 the
 //! boundary quad corners are lifted (boundary_lift.h): all of them while untangling, only those
@@ -365,6 +387,7 @@ solve::UntangleResult run(const Optimization& w, solve::UntangleOptions uo, bool
     uo.linear_solver = solve::NewtonSolver::ConjugateGradient;
     uo.cg_iterations = o.cg_iterations;
   }
+  if (w.local) drop_fixed_elements(reduction, el);
   uo.pattern_cache = w.pattern;
   uo.on_iteration = [&pb, centre_base](int, const Eigen::VectorXd& x, std::vector<solve::Attraction>& attr) {
     pb.project(x, attr, centre_base);
@@ -399,17 +422,76 @@ void check_input(const core::HexMesh& mesh, const OptimizeOptions& o) {
     if (!p.allFinite()) throw core::InputError("hex mesh: non-finite coordinate");
 }
 
+//! The vertices of the hexes within `rings` rings of the hexes with an inverted corner or
+//! centre (a ring: every hex sharing a vertex with the last).
+std::vector<char> near_inverted(const core::HexMesh& m, int rings) {
+  std::vector<char> in(m.points.size(), 0);
+  for (const core::Hex& h : m.cells)
+    if (inverted_jacobians(m, h) > 0)
+      for (int v : h) in[v] = 1;
+  for (int ring = 0; ring < rings; ++ring) {
+    const std::vector<char> last = in;
+    for (const core::Hex& h : m.cells)
+      if (std::any_of(h.begin(), h.end(), [&](int v) { return last[v] != 0; }))
+        for (int v : h) in[v] = 1;
+  }
+  return in;
+}
+
+//! The problem with only the vertices in `free` (corners excepted) as variables, the others
+//! fixed where they are, and their attractions dropped.
+Problem local_problem(const Problem& pb, const core::HexMesh& m, const std::vector<char>& free) {
+  Problem local = pb;
+  std::vector<int> var(3 * m.points.size(), -1);
+  int n = 0;
+  for (int v = 0; v < m.num_points(); ++v)
+    if (free[v] && pb.roles.role[v] != VertexRole::Corner)
+      for (int d = 0; d < 3; ++d) var[3 * v + d] = n++;
+  local.reduction = solve::index_reduction(var, n, solve::flatten(m.points));
+  local.attractions.clear();
+  local.stiffness.clear();
+  for (std::size_t k = 0; k < pb.attractions.size(); ++k)
+    if (free[pb.attractions[k].vertex]) {
+      local.attractions.push_back(pb.attractions[k]);
+      local.stiffness.push_back(pb.stiffness[k]);
+    }
+  return local;
+}
+
+//! The untangling's options (phase 1).
+solve::UntangleOptions untangle_options(const OptimizeOptions& o) {
+  solve::UntangleOptions uo;
+  uo.max_iterations = o.untangle_iterations;
+  uo.newton_steps = 2;
+  uo.volume_weight = o.volume_weight;
+  uo.initial_epsilon = 1.0;
+  uo.stop_when_untangled = true;
+  uo.stall_iterations = 30;
+  return uo;
+}
+
+//! Phase 1's local try (OptimizeOptions::local_untangle_rings): true when it left nothing
+//! inverted.
+bool untangle_locally(const Optimization& w, PhaseReport& report) {
+  const std::vector<char> free = near_inverted(w.mesh, w.o.local_untangle_rings);
+  Problem local = local_problem(w.pb, w.mesh, free);
+  Optimization lw{w.mesh, w.target_mesh, local, w.size, w.lengths, w.centre, w.multiplier, w.o};
+  lw.local = true;
+  const solve::UntangleResult r = run(lw, untangle_options(w.o), true, w.o.face_attraction);
+  add(report, r);
+  const int left = inverted_jacobians(w.mesh);
+  core::logger().info(
+      "optimize: local untangling ({} of {} vertices free) {} iterations, {} -> {} inverted elements{}",
+      std::count(free.begin(), free.end(), 1), w.mesh.num_points(), r.iterations, r.inverted_before,
+      r.inverted_after, left > 0 ? "; now the whole mesh" : "");
+  return left == 0;
+}
+
 //! Phase 1: untangle (corners fixed at the target may have folded elements too).
 void untangle_phase(const Optimization& w, PhaseReport& report) {
   if (inverted_jacobians(w.mesh) > 0 && w.o.untangle_iterations > 0) {
-    solve::UntangleOptions uo;
-    uo.max_iterations = w.o.untangle_iterations;
-    uo.newton_steps = 2;
-    uo.volume_weight = w.o.volume_weight;
-    uo.initial_epsilon = 1.0;
-    uo.stop_when_untangled = true;
-    uo.stall_iterations = 30;
-    const solve::UntangleResult r = run(w, uo, true, w.o.face_attraction);
+    if (w.o.local_untangle_rings > 0 && untangle_locally(w, report)) return;
+    const solve::UntangleResult r = run(w, untangle_options(w.o), true, w.o.face_attraction);
     add(report, r);
     core::logger().info(
         "optimize: untangling {} iterations, {} -> {} inverted elements (corners, centres, "

@@ -38,6 +38,13 @@ struct OptimizeOptions {
   //! volume, h the local edge length. Larger keeps the boundary closer, smaller frees the shape.
   double surface_weight = 100.0;
   int untangle_iterations = 200;  //!< outer iterations of the untangling phase at most
+  //! When > 0, the untangling first frees only the vertices of the hexes within this many rings
+  //! of the hexes with an inverted corner or centre, the rest of the mesh fixed as it is, and
+  //! runs on the whole mesh only when that leaves any inverted. For a mesh that was optimized
+  //! before a local change (a padding layer just inserted): the global untangling would first
+  //! relax the whole mesh under a soft barrier, at the cost of a whole optimization, only to
+  //! have the quality rounds optimize it again. 0: the whole mesh at once.
+  int local_untangle_rings = 0;
   int quality_rounds = 6;         //!< quality rounds (each reweights the worst hexes)
   int quality_iterations = 15;    //!< outer iterations per quality round at most
   //! The quality rounds stop once this many in a row were neither kept nor higher in mSJ than

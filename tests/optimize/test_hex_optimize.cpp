@@ -38,6 +38,49 @@ TEST(HexOptimize, TangledGridUntangles) {
   EXPECT_TRUE(check.ok()) << check.reason();
 }
 
+// One interior vertex of a 10 x 10 x 10 grid pushed through its neighbour: with
+// local_untangle_rings the untangling moves only the vertices of the hexes within that many rings
+// of the inverted ones, and still leaves none inverted; the whole-mesh untangling moves vertices
+// far from the tangle too (so the test tells the two apart).
+TEST(HexOptimize, LocalUntanglingMovesOnlyTheRegionAroundTheTangle) {
+  const core::Vec3 pushed(0.3, 0.5, 0.5);
+  const auto tangled = [&] {
+    core::HexMesh m = test::box_grid(10, 10, 10);
+    for (auto& p : m.points)
+      if ((p - pushed).norm() < 1e-9) p.x() += 0.17;  // past its neighbour at 0.4
+    return m;
+  };
+  const core::HexMesh start = tangled();
+  ASSERT_GT(quality::scaled_jacobian(start).inverted, 0);
+  // The inverted hexes are those around the pushed vertex and the one it crossed (x from 0.2 to
+  // 0.5, y and z from 0.4 to 0.6); one ring more: x from 0.1 to 0.6, y and z from 0.3 to 0.7.
+  const auto far = [&](const core::Vec3& p) {
+    return p.x() < 0.1 - 1e-9 || p.x() > 0.6 + 1e-9 || std::abs(p.y() - 0.5) > 0.2 + 1e-9 ||
+           std::abs(p.z() - 0.5) > 0.2 + 1e-9;
+  };
+  const auto moved_far = [&](const core::HexMesh& m) {
+    int n = 0;
+    for (std::size_t v = 0; v < m.points.size(); ++v)
+      n += far(start.points[v]) && m.points[v] != start.points[v] ? 1 : 0;
+    return n;
+  };
+  optimize::OptimizeOptions o;
+  o.quality_rounds = 0;
+  o.drift_retries = 0;
+  o.local_untangle_rings = 1;
+  core::HexMesh local = tangled();
+  const auto r = optimize::optimize_hex_mesh(local, test::box_surface(), o);
+  EXPECT_TRUE(r.untangled);
+  EXPECT_EQ(r.after.inverted + r.after.invalid, 0);
+  EXPECT_EQ(moved_far(local), 0);
+  EXPECT_NE(local.points, start.points);
+
+  o.local_untangle_rings = 0;
+  core::HexMesh whole = tangled();
+  EXPECT_TRUE(optimize::optimize_hex_mesh(whole, test::box_surface(), o).untangled);
+  EXPECT_GT(moved_far(whole), 100);
+}
+
 TEST(HexOptimize, TangledBoundaryUntanglesOnTheSurface) {
   core::HexMesh m = test::box_grid(4, 4, 4);
   // Swap two boundary vertices of the top face: the quads around them fold.
