@@ -253,7 +253,8 @@ void register_pad(CLI::App& app) {
   sub->add_option("--untangle-rings", opts->pad.optimize.local_untangle_rings,
                   "The optimization first untangles only the hexes within this many rings of those the new layer "
                   "inverted, the rest of the mesh kept as it is, and the whole mesh only when that is not enough "
-                  "(0: the whole mesh at once, which relaxes the already optimized part too)")
+                  "(0: the whole mesh at once, which also relaxes the optimized part). Faster where the layer's "
+                  "untangling is long; the quality rounds then take another path, to a higher or lower mSJ")
       ->check(cli::non_negative())
       ->capture_default_str();
   sub->add_option("--vtk", opts->vtk, "Also write the padded mesh as VTK with the cell fields padding_layer, "

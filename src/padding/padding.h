@@ -32,22 +32,13 @@ enum class PaddingMode {
 const char* mode_name(PaddingMode mode);
 
 //! Options of pad_hex_mesh().
-//! How many rings of hexes around the inverted ones the padded mesh's untangling frees first.
-constexpr int kPaddedUntangleRings = 2;
-
-//! The optimizer's defaults, with the local untangling of a padded mesh.
-inline optimize::OptimizeOptions padded_mesh_options() {
-  optimize::OptimizeOptions o;
-  o.local_untangle_rings = kPaddedUntangleRings;
-  return o;
-}
-
 struct PadOptions {
   SheetOptions sheet;                  //!< where the new layer's vertices start
-  //! The optimization after insertion. Its untangling frees the region around the hexes the
-  //! insertion inverted before the whole mesh (OptimizeOptions::local_untangle_rings): the rest
-  //! is the optimized mesh that was padded.
-  optimize::OptimizeOptions optimize = padded_mesh_options();
+  //! The optimization after insertion. Its untangling may free only the region around the hexes
+  //! the insertion inverted first (OptimizeOptions::local_untangle_rings; off by default: the
+  //! whole-mesh untangling's relaxation led the quality rounds as often to a higher mSJ as the
+  //! local one, bench/RESULTS.md).
+  optimize::OptimizeOptions optimize;
   bool run_optimizer = true;           //!< false: insertion only (the layer as placed)
 };
 

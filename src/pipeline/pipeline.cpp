@@ -117,11 +117,6 @@ void clear_earlier_run(const std::filesystem::path& out_dir, const std::filesyst
 bool pads(const RunOptions& o) { return o.hexmesh && o.optimize && o.padding != padding::PaddingMode::None; }
 
 //! Whether a requested padding is kept (RunOptions::padding_usable_min_sj).
-bool padding_pays(const padding::PadResult& p, const RunOptions& o) {
-  const double after = p.after.scaled_jacobian.min;
-  return after >= p.before.scaled_jacobian.min || after >= o.padding_usable_min_sj;
-}
-
 //! The fabricate stage: decompose, check, write parts/ (nothing when a part fails its checks or
 //! the chamber, so a failed stage leaves no half-made assembly).
 void fabricate_and_write(const core::PolycubeMap& map, const core::TriMesh& solid, const RunOptions& o,
@@ -282,13 +277,15 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
     run.stage("optimize", [&] { hex = optimize_with_fallbacks(hex, map, grid_sizing, in, o, out_dir, r, add_file); });
 
   // 6. padding (selective by default; unless the optimize stage has padded already). A padding
-  //    that fails, or costs quality (padding_pays), leaves the optimized mesh as the result: the
-  //    mesh was valid before it, and padding is an improvement, not a step the result needs.
+  //    that fails, or costs quality or surface fidelity (padding_does_not_pay), leaves the
+  //    optimized mesh as the result: the mesh was valid before it, and padding is an
+  //    improvement, not a step the result needs.
   if (pads(o) && r.ok() && r.padding == "none")
     run.stage("pad", [&] {
       const std::string mode = padding::mode_name(o.padding);
       std::optional<padding::PadResult> p;
       std::string failure;
+      const double unpadded_distance = in.distances.measure(hex, in.target).relative;  // remembered: no new measure
       try {
         p = pad_and_record(hex, in, o, o.padding, mode, out_dir, r, add_file);
         if (p && !p->check.ok()) failure = "the padded mesh fails the global fold-over check: " + fold_summary(p->check);
@@ -307,11 +304,13 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
       }
       r.msj_unpadded = p->before.scaled_jacobian.min;
       r.msj_padded = p->after.scaled_jacobian.min;
-      if (!padding_pays(*p, o)) {
-        r.padding += fmt::format(" (not kept: mSJ {:.3f} -> {:.3f})", r.msj_unpadded, r.msj_padded);
-        core::logger().warn("pad: the padded mesh's mSJ {:.3f} is below the unpadded {:.3f} and {:g}; keeping the "
-                            "unpadded mesh (the padded one is in hex_padded.mesh)",
-                            r.msj_padded, r.msj_unpadded, o.padding_usable_min_sj);
+      const std::string why = padding_does_not_pay(*p, unpadded_distance, o);
+      if (!why.empty()) {
+        r.padding += fmt::format(" (not kept: mSJ {:.3f} -> {:.3f}, Hausdorff {:.3f} % -> {:.3f} %)", r.msj_unpadded,
+                                 r.msj_padded, 100 * unpadded_distance, 100 * p->distance.relative);
+        core::logger().warn("pad: the padded mesh is not kept: {}; keeping the unpadded mesh (the padded one is in "
+                            "hex_padded.mesh)",
+                            why);
         return;
       }
       hex = std::move(p->mesh);
