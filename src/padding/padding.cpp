@@ -5,6 +5,8 @@
 #include "core/topology.h"
 #include "quality/singularities.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 
 namespace polycube::padding {
@@ -54,6 +56,18 @@ PadResult pad_hex_mesh(const core::HexMesh& mesh, const core::TriMesh& target, c
   progress.step();
   progress.finish();
   return r;
+}
+
+std::string why_not_kept(const PadResult& padded, double unpadded_distance, double hausdorff_bound,
+                         double usable_min_sj) {
+  const double before = padded.before.scaled_jacobian.min, after = padded.after.scaled_jacobian.min;
+  if (after < before && after < usable_min_sj)
+    return fmt::format("its mSJ {:.3f} is below the unpadded {:.3f} and {:g}", after, before, usable_min_sj);
+  if (padded.distance.relative > std::max(hausdorff_bound, unpadded_distance))
+    return fmt::format("its boundary is {:.3f} % of the diagonal from the input, beyond the unpadded mesh's {:.3f} % "
+                       "and the {:.2f} % bound",
+                       100 * padded.distance.relative, 100 * unpadded_distance, 100 * hausdorff_bound);
+  return {};
 }
 
 SelectivePlan plan_selective_padding(const core::HexMesh& mesh, const AnalysisOptions& analysis,

@@ -87,6 +87,14 @@ struct SelectivePlan {
   Selection selection;
 };
 
+//! Why a padded mesh should not replace the unpadded one (empty: it should). Its mSJ must not be
+//! lower than the unpadded one's, unless it is at least `usable_min_sj` anyway; its boundary must
+//! stay within `hausdorff_bound` (relative to the target's bounding-box diagonal) where the
+//! unpadded one, `unpadded_distance` from it, was (and no farther where it was not): the surface
+//! is a constraint of the optimization, which padding may not trade for the mSJ.
+std::string why_not_kept(const PadResult& padded, double unpadded_distance, double hausdorff_bound,
+                         double usable_min_sj);
+
 //! Plan selective padding on a hex mesh. \throw as analyze_mapping and select_facets_to_pad
 SelectivePlan plan_selective_padding(const core::HexMesh& mesh, const AnalysisOptions& analysis = {},
                                      const SelectionOptions& selection = {});

@@ -277,7 +277,7 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
     run.stage("optimize", [&] { hex = optimize_with_fallbacks(hex, map, grid_sizing, in, o, out_dir, r, add_file); });
 
   // 6. padding (selective by default; unless the optimize stage has padded already). A padding
-  //    that fails, or costs quality or surface fidelity (padding_does_not_pay), leaves the
+  //    that fails, or costs quality or surface fidelity (padding::why_not_kept), leaves the
   //    optimized mesh as the result: the mesh was valid before it, and padding is an
   //    improvement, not a step the result needs.
   if (pads(o) && r.ok() && r.padding == "none")
@@ -304,7 +304,8 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
       }
       r.msj_unpadded = p->before.scaled_jacobian.min;
       r.msj_padded = p->after.scaled_jacobian.min;
-      const std::string why = padding_does_not_pay(*p, unpadded_distance, o);
+      const std::string why = padding::why_not_kept(*p, unpadded_distance, o.optimize_options.hausdorff_bound,
+                                                     o.padding_usable_min_sj);
       if (!why.empty()) {
         r.padding += fmt::format(" (not kept: mSJ {:.3f} -> {:.3f}, Hausdorff {:.3f} % -> {:.3f} %)", r.msj_unpadded,
                                  r.msj_padded, 100 * unpadded_distance, 100 * p->distance.relative);

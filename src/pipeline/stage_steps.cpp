@@ -8,7 +8,6 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <system_error>
 
 namespace polycube::pipeline {
@@ -117,18 +116,6 @@ void discard_padded(const std::filesystem::path& out_dir, RunResult& r) {
     std::filesystem::remove(out_dir / name, ec);
     std::erase(r.files, (out_dir / name).string());
   }
-}
-
-std::string padding_does_not_pay(const padding::PadResult& p, double unpadded_distance, const RunOptions& o) {
-  const double before = p.before.scaled_jacobian.min, after = p.after.scaled_jacobian.min;
-  if (after < before && after < o.padding_usable_min_sj)
-    return fmt::format("its mSJ {:.3f} is below the unpadded {:.3f} and {:g}", after, before, o.padding_usable_min_sj);
-  const double bound = std::max(o.optimize_options.hausdorff_bound, unpadded_distance);
-  if (p.distance.relative > bound)
-    return fmt::format("its boundary is {:.3f} % of the diagonal from the input, beyond the unpadded mesh's {:.3f} % "
-                       "and the {:.2f} % bound",
-                       100 * p.distance.relative, 100 * unpadded_distance, 100 * o.optimize_options.hausdorff_bound);
-  return {};
 }
 
 }  // namespace polycube::pipeline

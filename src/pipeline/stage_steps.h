@@ -47,12 +47,6 @@ std::optional<padding::PadResult> pad_and_record(const core::HexMesh& hex, const
                                                  const std::filesystem::path& out_dir, RunResult& r,
                                                  const FileWritten& wrote);
 
-//! Why the padded mesh does not replace the optimized one (empty: it does). Its mSJ must not be
-//! lower than the unpadded one's, unless it is usable anyway; its boundary must stay within the
-//! distance bound where the unpadded one was (and no farther where it was not): the surface is a
-//! constraint of the optimization, which padding may not trade for the mSJ.
-std::string padding_does_not_pay(const padding::PadResult& p, double unpadded_distance, const RunOptions& o);
-
 //! Forget a padded mesh that is not kept (only an injected failure can reject a mesh that
 //! passed the check, the only one pad_and_record writes).
 void discard_padded(const std::filesystem::path& out_dir, RunResult& r);
