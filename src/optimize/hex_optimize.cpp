@@ -331,10 +331,9 @@ struct Optimization {
 //! Drop the elements none of whose points moves with the reduction's variables: constants of the
 //! energy, and a local untangling's cost is then that of its region only.
 void drop_fixed_elements(const solve::LinearReduction& reduction, solve::TetElements& el) {
-  const auto& B = reduction.B;
   const auto moves = [&](int p) {
     for (int d = 0; d < 3; ++d)
-      if (B.outerIndexPtr()[3 * p + d + 1] > B.outerIndexPtr()[3 * p + d]) return true;
+      if (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator(reduction.B, 3 * p + d)) return true;
     return false;
   };
   solve::TetElements kept;

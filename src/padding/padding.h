@@ -35,9 +35,9 @@ const char* mode_name(PaddingMode mode);
 struct PadOptions {
   SheetOptions sheet;                  //!< where the new layer's vertices start
   //! The optimization after insertion. Its untangling may free only the region around the hexes
-  //! the insertion inverted first (OptimizeOptions::local_untangle_rings; off by default: the
-  //! whole-mesh untangling's relaxation led the quality rounds as often to a higher mSJ as the
-  //! local one, bench/RESULTS.md).
+  //! the insertion inverted first (OptimizeOptions::local_untangle_rings; off by default: after
+  //! it the quality rounds ended lower in mSJ on more of the shared shapes than higher,
+  //! bench/RESULTS.md).
   optimize::OptimizeOptions optimize;
   bool run_optimizer = true;           //!< false: insertion only (the layer as placed)
 };

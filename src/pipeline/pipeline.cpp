@@ -116,7 +116,6 @@ void clear_earlier_run(const std::filesystem::path& out_dir, const std::filesyst
 //! Whether the pad stage runs: padding asked for (selective by default) on an optimized mesh.
 bool pads(const RunOptions& o) { return o.hexmesh && o.optimize && o.padding != padding::PaddingMode::None; }
 
-//! Whether a requested padding is kept (RunOptions::padding_usable_min_sj).
 //! The fabricate stage: decompose, check, write parts/ (nothing when a part fails its checks or
 //! the chamber, so a failed stage leaves no half-made assembly).
 void fabricate_and_write(const core::PolycubeMap& map, const core::TriMesh& solid, const RunOptions& o,

@@ -798,7 +798,8 @@ LinearReduction with_derived_points(const LinearReduction& r, const std::vector<
         if (points[k].vertex[i] < 0) continue;
         const double w = points[k].weight[i];
         const Eigen::Index src = 3 * static_cast<Eigen::Index>(points[k].vertex[i]) + d;
-        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(base, src); it; ++it) terms.emplace_back(static_cast<int>(it.col()), w * it.value());
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(base, src); it; ++it)
+          terms.emplace_back(static_cast<int>(it.col()), w * it.value());
         out.x0[dst] += w * r.x0[src];
       }
       // A variable shared by several vertices: summed in vertex order, an exact zero kept.
