@@ -133,6 +133,12 @@ void register_optimize(CLI::App& app) {
   sub->add_option("--untangle-iterations", oo.untangle_iterations, "Outer iterations of the untangling at most")
       ->check(cli::non_negative())
       ->capture_default_str();
+  sub->add_option("--untangle-sigma", oo.untangle_min_sigma,
+                  "Floor of the untangling's sigma: epsilon falls by about this fraction per outer iteration at "
+                  "least. Higher reaches a valid mesh sooner; the paper's 0.1 unfolds hard tangles more surely "
+                  "(`run` falls back to it where the default fails)")
+      ->check(cli::in_range(0.01, 0.9))
+      ->capture_default_str();
   sub->add_option("--untangle-rings", oo.local_untangle_rings,
                   "Untangle first only the hexes within this many rings of the inverted ones, the rest of the mesh "
                   "kept as it is, and the whole mesh only when that is not enough: for a mesh that was optimized "

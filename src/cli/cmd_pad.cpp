@@ -250,6 +250,11 @@ void register_pad(CLI::App& app) {
                   "Where the new layer starts: this fraction of the local edge length inside the padded facets' hexes")
       ->check(cli::in_range(0.01, 0.9))
       ->capture_default_str();
+  sub->add_option("--untangle-sigma", opts->pad.optimize.untangle_min_sigma,
+                  "Floor of the untangling's sigma: epsilon falls by about this fraction per outer iteration at "
+                  "least. Higher reaches a valid mesh sooner; the paper's 0.1 unfolds hard tangles more surely")
+      ->check(cli::in_range(0.01, 0.9))
+      ->capture_default_str();
   sub->add_option("--untangle-rings", opts->pad.optimize.local_untangle_rings,
                   "The optimization first untangles only the hexes within this many rings of those the new layer "
                   "inverted, the rest of the mesh kept as it is, and the whole mesh only when that is not enough "

@@ -166,7 +166,9 @@ std::string optimize_fallback_summary(const pipeline::RunResult& r) {
   if (r.optimize_fallback == "none") return {};
   if (r.optimize_fallback.ends_with("padding"))
     return ", fell back to " + r.optimize_fallback + ": " + padding_summary(r);
-  if (r.optimize_fallback == "stiffer boundary barrier") return ", optimized again with a " + r.optimize_fallback;
+  if (r.optimize_fallback.starts_with("stiffer boundary barrier") ||
+      r.optimize_fallback.starts_with("slower untangling schedule"))  // the same grid
+    return ", optimized again with a " + r.optimize_fallback;
   return ", regridded: " + r.optimize_fallback;
 }
 
@@ -328,7 +330,8 @@ void register_run(CLI::App& app) {
   sub->add_option("--inject-failure", opts->run.inject_failure, "Testing only: make this stage fail at its start")
       ->check(CLI::IsMember({"input", "construct", "simplify", "fabricate", "hexmesh", "optimize", "quality", "simplify-step-1",
                              "simplify-step-2", "simplify-step-3", "optimize-step-1", "optimize-step-2",
-                             "optimize-step-3", "optimize-step-4", "optimize-crossing-1", "optimize-distance-1",
+                             "optimize-step-3", "optimize-step-4", "optimize-step-5", "optimize-crossing-1",
+                             "optimize-crossing-2", "optimize-distance-1",
                              "optimize-distance-2", "optimize-distance-3", "pad"}))
       ->group("");
   opts->command = sub;

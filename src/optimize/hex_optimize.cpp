@@ -409,7 +409,8 @@ void add(PhaseReport& p, const solve::UntangleResult& r) {
 
 void check_input(const core::HexMesh& mesh, const OptimizeOptions& o) {
   if (mesh.cells.empty()) throw core::InputError("hex mesh: no hexahedra");
-  if (!(o.surface_weight >= 0) || o.untangle_iterations < 0 || o.quality_rounds < 0 || o.quality_patience < 0 ||
+  if (!(o.surface_weight >= 0) || o.untangle_iterations < 0 ||
+      !(o.untangle_min_sigma > 0 && o.untangle_min_sigma < 1) || o.quality_rounds < 0 || o.quality_patience < 0 ||
       o.quality_iterations < 1 || !(o.volume_weight > 0) ||
       !(o.feature_angle > 0 && o.feature_angle < 180) || !(o.feature_distance > 0) ||
       !(o.drift_diagonal > 0) || !(o.hausdorff_bound > 0) || o.drift_retries < 0 ||
@@ -466,6 +467,7 @@ solve::UntangleOptions untangle_options(const OptimizeOptions& o) {
   uo.initial_epsilon = 1.0;
   uo.stop_when_untangled = true;
   uo.stall_iterations = 30;
+  uo.min_sigma = o.untangle_min_sigma;
   return uo;
 }
 

@@ -38,6 +38,12 @@ struct OptimizeOptions {
   //! volume, h the local edge length. Larger keeps the boundary closer, smaller frees the shape.
   double surface_weight = 100.0;
   int untangle_iterations = 200;  //!< outer iterations of the untangling phase at most
+  //! Floor of σ in the untangling's ε update (solve::UntangleOptions::min_sigma): ε falls up to
+  //! twice as fast per outer iteration as with the paper's 0.1. A gridded or padded mesh's
+  //! tangle is mostly a few folded hexes in a valid grid, which unfold on the way; where the
+  //! faster fall stiffens the barrier before a squashed boundary has unfolded, `run` optimizes
+  //! that gridding again with 0.1 (pipeline/optimize_stage.h). bench/RESULTS.md, stops 55–56.
+  double untangle_min_sigma = 0.2;
   //! When > 0, the untangling first frees only the vertices of the hexes within this many rings
   //! of the hexes with an inverted corner or centre, the rest of the mesh fixed as it is, and
   //! runs on the whole mesh only when that leaves any inverted. For a mesh that was optimized

@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <limits>
 #include <optional>
 #include <string>
@@ -24,6 +25,11 @@ namespace {
 //! How much stiffer the boundary barrier of the first fallback is (a boundary that crosses
 //! itself; optimize::OptimizeOptions::boundary_barrier).
 constexpr double kBarrierRetry = 4.0;
+
+//! The floor of σ in the untangling's ε update of the paper (Garanzha et al. 2021): the slower,
+//! surer schedule a gridding is optimized with again when the faster default
+//! (optimize::OptimizeOptions::untangle_min_sigma) left it invalid.
+constexpr double kPaperSigma = 0.1;
 
 //! At most how many times the first grid's hexes the distance fallback's refinement near the
 //! far points makes (step 5): as many as the grid twice as fine everywhere (the next try), whose
@@ -63,8 +69,7 @@ class OptimizeStage {
 
   core::HexMesh run(const core::HexMesh& gridded) {
     hex_ = gridded;
-    why_ = optimize(hex_, first_try_options());
-    retry_with_stiffer_barrier(hex_, gridded, "stiffer boundary barrier");
+    optimize_gridding(hex_, gridded, "");
     pad_instead();
     grid_again();
     if (!why_.empty()) throw core::GeometryError("the optimized hex mesh fails the global fold-over check: " + why_);
@@ -80,10 +85,44 @@ class OptimizeStage {
   //! The options of a first optimization, which step 2 may follow: it stops after the
   //! untangling when the boundary then crosses itself (the quality rounds keep the crossings),
   //! so that step 2 starts at once.
-  optimize::OptimizeOptions first_try_options() const {
-    optimize::OptimizeOptions oo = o_.optimize_options;
+  optimize::OptimizeOptions first_try_options(const optimize::OptimizeOptions& schedule) const {
+    optimize::OptimizeOptions oo = schedule;
     oo.stop_when_untangled_crosses = o_.optimize_fallbacks && oo.boundary_barrier > 0;
     return oo;
+  }
+
+  //! The optimizer's options with the paper's ε schedule (kPaperSigma).
+  optimize::OptimizeOptions paper_schedule() const {
+    optimize::OptimizeOptions oo = o_.optimize_options;
+    oo.untangle_min_sigma = std::min(oo.untangle_min_sigma, kPaperSigma);
+    return oo;
+  }
+
+  //! Steps 1–2 on `hex`, the gridding `gridded` (named `name`; empty: the first grid), with the
+  //! optimizer's ε schedule, then, when neither left a valid mesh and that schedule is faster than
+  //! the paper's, once more with the paper's. The faster fall of ε reaches a valid mesh in fewer
+  //! outer iterations where the tangle is a few folded hexes in a valid grid, but can stiffen the
+  //! barrier before a squashed boundary has unfolded (bench/RESULTS.md, stop 55: fandisk's finer
+  //! grid); the paper's schedule then gives what it always gave.
+  void optimize_gridding(core::HexMesh& hex, const core::HexMesh& gridded, const std::string& name) {
+    const auto named = [&](const char* step) { return name.empty() ? std::string(step) : name + ", " + step; };
+    std::vector<optimize::OptimizeOptions> schedules{o_.optimize_options};
+    if (o_.optimize_options.untangle_min_sigma > kPaperSigma) schedules.push_back(paper_schedule());
+    for (std::size_t i = 0; i < schedules.size(); ++i) {
+      const bool last = i + 1 == schedules.size();
+      if (i > 0) {
+        if (!falls_back()) return;
+        record_failure();
+        core::logger().warn("optimize: {}; trying the paper's slower untangling schedule", why_);
+        r_.optimize_fallback = named("slower untangling schedule");
+        hex = gridded;
+      }
+      why_ = optimize(hex, first_try_options(schedules[i]));
+      const std::string stiffer = named(i > 0 ? "slower untangling schedule, stiffer boundary barrier"
+                                              : "stiffer boundary barrier");
+      retry_with_stiffer_barrier(hex, gridded, stiffer, schedules[i], last);
+      if (why_.empty()) return;
+    }
   }
 
   //! Step 1 on `hex` (in place): why it fails the fold-over check, empty when it passes.
@@ -93,6 +132,8 @@ class OptimizeStage {
     r_.iterations_optimize = opt.untangle.iterations + opt.quality.iterations;
     stopped_ = opt.stopped_crossing;
     const std::string why = why_failed(optimize::check_foldover(hex));
+    // An injected crossing stands for one found where the optimizer stops, after the untangling.
+    early_crossing_ = crossing_ && (stopped_ || checks_ <= injected_crossings_);
     return stopped_ && !why.empty() ? "after the untangling, " + why : why;
   }
 
@@ -114,22 +155,27 @@ class OptimizeStage {
   }
 
   //! Step 2 on `hex`, the optimized `gridded`: when it failed by its boundary crossing itself
-  //! only, `gridded` is optimized again with the stiffer barrier, under the fallback name
-  //! `name`. Its cost is one optimization; when it fails too, `hex` keeps the first result (the
-  //! one the later steps pad).
+  //! only, `gridded` is optimized again with the stiffer barrier (otherwise the options of
+  //! `schedule`), under the fallback name `name`. Its cost is one optimization; when it fails
+  //! too, `hex` keeps the first result (the one the later steps pad).
   //! A first optimization that stopped after the untangling (first_try_options) gets its quality
-  //! rounds when the retry fails too: its mesh is the one the later steps pad.
-  void retry_with_stiffer_barrier(core::HexMesh& hex, const core::HexMesh& gridded, const std::string& name) {
-    if (!falls_back() || !crossing_ || o_.optimize_options.boundary_barrier <= 0) return;
+  //! rounds when the retry fails too and `last` (no other schedule follows): its mesh is the one
+  //! the later steps pad. When another schedule follows, the retry runs only for a crossing
+  //! found after the untangling: one that the quality rounds made after a fast untangling goes
+  //! to the slower schedule, which has its own retry (bench/RESULTS.md, stop 56: fandisk's
+  //! finer grid, whose fast retry crossed itself too and cost a full optimization).
+  void retry_with_stiffer_barrier(core::HexMesh& hex, const core::HexMesh& gridded, const std::string& name,
+                                  const optimize::OptimizeOptions& schedule, bool last) {
+    if (!falls_back() || !crossing_ || schedule.boundary_barrier <= 0 || (!last && !early_crossing_)) return;
     record_failure();
     core::logger().warn("optimize: {}; trying a stiffer boundary barrier", why_);
     r_.optimize_fallback = name;
     const bool first_stopped = stopped_;
     core::HexMesh first = std::exchange(hex, gridded);
-    optimize::OptimizeOptions stiffer = o_.optimize_options;
+    optimize::OptimizeOptions stiffer = schedule;
     stiffer.boundary_barrier *= kBarrierRetry;
     why_ = optimize(hex, stiffer);
-    if (why_.empty()) return;
+    if (why_.empty() || !last) return;
     if (!first_stopped) {
       hex = std::move(first);
       return;
@@ -137,7 +183,7 @@ class OptimizeStage {
     core::logger().warn("optimize: {}; optimizing the first mesh in full", why_);
     hex = gridded;
     const int iterations = r_.iterations_optimize;  // the report keeps the retry's, as when it did not stop
-    optimize::optimize_hex_mesh(hex, in_.target, o_.optimize_options);
+    optimize::optimize_hex_mesh(hex, in_.target, schedule);
     r_.iterations_optimize = iterations;
   }
 
@@ -176,7 +222,7 @@ class OptimizeStage {
       r_.optimize_fallback = g.name;
       r_.padding = "none";
       first_grid_ = false;
-      why_ = optimize(hex_, o_.optimize_options);
+      why_ = optimize(hex_, paper_schedule());
     }
   }
 
@@ -200,12 +246,12 @@ class OptimizeStage {
     why_ = injected ? std::string("injected distance")
                     : fmt::format("{:.2f} % of the diagonal from the input (bound {:.2f} %)", 100 * far, 100 * bound);
     record_failure();
-    const Finer first{r_.optimize_fallback, o_.target_hexes, {}, r_.iterations_optimize, false};
+    const Finer first{r_.optimize_fallback, o_.target_hexes, {}, r_.iterations_optimize, false, {}};
     Finer kept = first;
     const std::vector<core::Vec3> near =
         o_.refine_far ? mesh::polycube_points(map_, far_points(d)) : std::vector<core::Vec3>{};
-    Finer tries[] = {{"finer grid near the far points (2x cells there)", o_.target_hexes, near, 0, true},
-                     {"finer grid for the distance (2x hexes)", 2 * o_.target_hexes, {}, 0, false}};
+    Finer tries[] = {{"finer grid near the far points (2x cells there)", o_.target_hexes, near, 0, true, {}},
+                     {"finer grid for the distance (2x hexes)", 2 * o_.target_hexes, {}, 0, false, {}}};
     gridded_ = first.name;
     for (Finer& f : tries) {
       if (far <= bound) break;
@@ -216,8 +262,9 @@ class OptimizeStage {
       far = *closer;
       kept = f;
       kept.iterations = r_.iterations_optimize;
+      kept.fallback = r_.optimize_fallback;  // with the schedule or retry that gave it
     }
-    r_.optimize_fallback = kept.name;
+    r_.optimize_fallback = kept.fallback.empty() ? kept.name : kept.fallback;
     r_.iterations_optimize = kept.iterations;
     if (gridded_ != kept.name)  // the kept mesh's gridding was overwritten
       grid_and_write(map_, kept.target_hexes, sizing_, out_dir_, r_, wrote_, kept.near);
@@ -249,6 +296,7 @@ class OptimizeStage {
     std::vector<core::Vec3> near;  //!< the points around which the cells are doubled
     int iterations = 0;            //!< the optimizer's iterations for the mesh (once kept)
     bool local = false;            //!< refined near the far points only (RunOptions::refine_far)
+    std::string fallback;          //!< the step that gave its mesh (once kept): name, schedule, retry
   };
 
   //! Grid `f`, optimize it (with step 2 when its boundary crosses itself) and make it the mesh
@@ -279,8 +327,7 @@ class OptimizeStage {
     core::logger().warn("optimize: {}; gridding again: {}", why_, name);
     r_.optimize_fallback = name;
     core::HexMesh finer = grid;
-    why_ = optimize(finer, first_try_options());
-    retry_with_stiffer_barrier(finer, grid, name + ", stiffer boundary barrier");
+    optimize_gridding(finer, grid, name);
     if (why_.empty()) {
       const bool injected = far_checks_++ < injected_far_;
       const double closer = injected ? far : distance(finer);
@@ -315,6 +362,7 @@ class OptimizeStage {
   std::string gridded_;  //!< step 5: the name of the gridding hex.mesh holds
   bool crossing_ = false;   //!< the last result failed by its boundary crossing itself only
   bool stopped_ = false;    //!< the last optimization stopped after its untangling (first_try_options)
+  bool early_crossing_ = false;  //!< the last result crossed itself already after its untangling
   bool first_grid_ = true;  //!< hex_ comes from the first gridding, unpadded
 };
 

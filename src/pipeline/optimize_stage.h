@@ -4,6 +4,9 @@
 //!  1. the gridded mesh is optimized, and the result goes through the global fold-over check;
 //!  2. a result that fails only by its boundary crossing itself: the same grid once more, the
 //!     boundary barrier kBarrierRetry times stiffer (keeps the hexes the user asked for);
+//!     steps 1–2 run with the optimizer's fast ε schedule (OptimizeOptions::untangle_min_sigma)
+//!     and, when neither passes, once more with the paper's slower one ("slower untangling
+//!     schedule"), which step 4 also uses;
 //!  3. the first result padded selectively, then globally, and optimized again (the new layer
 //!     frees the boundary hexes the gridding squashed; thesis ch. 4);
 //!  4. the map gridded again with its own sizing, then twice as fine, and optimized;
@@ -12,7 +15,7 @@
 //!     gridded with twice the cells in the unit slabs of the polycube that hold the points where
 //!     the mesh misses the input (mesh::GridOptions::refine_near; not when that makes more than
 //!     twice the hexes); then, while still beyond the bound, twice as fine everywhere (each with
-//!     step 2 when its boundary crosses itself); a finer mesh is kept when it is valid and closer
+//!     steps 1–2 and their schedules); a finer mesh is kept when it is valid and closer
 //!     than the one before.
 //! Each step runs only when the ones before it left no valid mesh (step 5: a mesh too far).
 //! RunResult::optimize_fallback names the step that gave the mesh ("none": step 1) and

@@ -87,7 +87,7 @@ struct RunOptions {
   //! option of `polycube run`): the stage of this name fails as soon as it starts, with a
   //! core::GeometryError "injected failure", exactly as a stage that could not reach a result;
   //! "simplify-step-N": the first N steps of the simplification count as failed (its
-  //! fallbacks, simplify.h); "optimize-step-N" (N in 1..4): the first N optimized meshes count
+  //! fallbacks, simplify.h); "optimize-step-N" (N in 1..5): the first N optimized meshes count
   //! as failing the fold-over check (optimize_fallbacks); "optimize-crossing-N": the first N
   //! count as meshes whose boundary crosses itself (the stiffer barrier's retry first);
   //! "optimize-distance-N": the first N valid meshes count as too far from the input (1: the

@@ -15,7 +15,7 @@ namespace polycube::pipeline {
 int injected_steps(const std::string& inject, const std::string& prefix) {
   if (inject.size() != prefix.size() + 1 || inject.rfind(prefix, 0) != 0) return 0;
   const char n = inject.back();
-  return n >= '1' && n <= '4' ? n - '0' : 0;
+  return n >= '1' && n <= '9' ? n - '0' : 0;
 }
 
 void write_vtk(const std::filesystem::path& path, core::MeshData data, std::vector<core::Field> fields) {

@@ -23,7 +23,7 @@ namespace polycube::pipeline {
 //! Called with each file the chain writes (RunResult::files).
 using FileWritten = std::function<void(const std::filesystem::path&)>;
 
-//! Testing only: N for an injected failure "<prefix>N" with N in 1..4 (RunOptions::inject_failure), else 0.
+//! Testing only: N for an injected failure "<prefix>N" with N in 1..9 (RunOptions::inject_failure), else 0.
 int injected_steps(const std::string& inject, const std::string& prefix);
 
 //! Write a mesh with cell fields as VTK (or whatever the extension says).

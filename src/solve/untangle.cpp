@@ -1013,7 +1013,7 @@ UntangleResult untangle(const TetElements& el, const LinearReduction& R, Eigen::
     if (o.stop_when_untangled && st.inverted == 0) break;
     if (st.inverted == 0 && std::abs(E_prev - E) <= o.tolerance * std::abs(E)) break;
     // ε update of Garanzha et al. 2021 (section 4): follow the min det.
-    const double sigma = std::max(1.0 - E / E_prev, 0.1);
+    const double sigma = std::max(1.0 - E / E_prev, o.min_sigma);
     const double mu = (1.0 - sigma) * chi(st.min_det, eps);
     if (st.min_det < mu) eps = std::max(o.min_epsilon, 2.0 * std::sqrt(mu * (mu - st.min_det)));
     else eps = o.min_epsilon;

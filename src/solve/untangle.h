@@ -125,6 +125,10 @@ struct UntangleOptions {
   //! keep it well below 1 then.
   double initial_epsilon = 1.0;
   double min_epsilon = 1e-9;      //!< ε never goes below this
+  //! Floor of σ in the ε update (σ = max(1 − E/E_prev, min_sigma), ε shrinking by about
+  //! min_sigma per outer iteration while the energy rises): 0.1 is the paper's. A higher floor
+  //! unfolds a hard tangle less surely (bench/RESULTS.md, stop 53) but reaches a mild one sooner.
+  double min_sigma = 0.1;
   //! Stop when no element is inverted and the relative energy decrease of an outer iteration
   //! is below this.
   double tolerance = 1e-5;

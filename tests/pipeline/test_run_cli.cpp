@@ -512,33 +512,53 @@ TEST(RunCli, SimplifyFallsBackStepByStepAndTheReportNamesTheStep) {
   }
 }
 
+//! hex.mesh is the gridding that was optimized: the final mesh has its hexes, as many as the
+//! report says.
+void expect_final_mesh_is_the_gridding(const fs::path& out, const nlohmann::json& j) {
+  const core::HexMesh gridded = core::hexes_of(io::read_mesh(out / "hex.mesh"));
+  const core::HexMesh final_mesh = core::hexes_of(io::read_mesh(out / "hex_optimized.mesh"));
+  EXPECT_EQ(gridded.cells, final_mesh.cells);
+  EXPECT_EQ(static_cast<int>(final_mesh.cells.size()), j["hexes"].get<int>());
+}
+
 // The optimizer's fallbacks (pipeline.h), reached by `--inject-failure optimize-step-N` (the
-// first N optimized meshes count as failing the fold-over check): the mesh is padded
-// selectively (nothing to pad on a box), then globally, then the map is gridded again with its own sizing, then twice as fine; the report names the
-// fallback that passed, and hex.mesh is the gridding that was optimized. When all fail, the
+// first N optimized meshes count as failing the fold-over check): the same grid with the paper's
+// slower untangling schedule, then the mesh padded selectively (nothing to pad on a box), then
+// globally, then the map gridded again with its own sizing, then twice as fine; the report names
+// the fallback that passed, and hex.mesh is the gridding that was optimized. When all fail, the
 // stage fails with exit 3.
 TEST(RunCli, OptimizeFallsBackToPaddingThenNewGriddingsAndTheReportNamesThem) {
   const fs::path dir = temp_dir("optimize_fallbacks");
   write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
-  const char* expected[] = {"global padding", "map sizing", "finer grid (2x hexes)"};
-  int hexes[3] = {0, 0, 0};
-  for (int n = 1; n <= 3; ++n) {
+  const char* expected[] = {"slower untangling schedule", "global padding", "map sizing", "finer grid (2x hexes)"};
+  int hexes[4] = {0, 0, 0, 0};
+  for (int n = 1; n <= 4; ++n) {
     SCOPED_TRACE(n);
     const fs::path out = dir / ("out" + std::to_string(n));
     const CliResult r = run(dir / "box.obj", out, "--hexes 200 --inject-failure optimize-step-" + std::to_string(n));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto j = read_report(out);
     EXPECT_EQ(j["optimize_fallback"], expected[n - 1]);
+    EXPECT_EQ(j["optimize_tried"][0], "first grid: injected failure");
+    if (n == 1) {
+      // The same gridding optimized again: its hexes, no padding.
+      EXPECT_NE(r.out.find("optimized again with a slower untangling schedule"), std::string::npos) << r.out;
+      ASSERT_EQ(j["optimize_tried"].size(), 1u);
+      EXPECT_EQ(j["final"]["inverted"], 0);
+      expect_final_mesh_is_the_gridding(out, j);
+      EXPECT_FALSE(fs::exists(out / "hex_padded.mesh"));
+      continue;
+    }
     // The box's hexes are all good: selective padding finds nothing to pad and passes on.
     ASSERT_EQ(j["optimize_tried"].size(), static_cast<std::size_t>(n + 1));
-    EXPECT_EQ(j["optimize_tried"][0], "first grid: injected failure");
-    EXPECT_EQ(j["optimize_tried"][1], "selective padding: nothing to pad");
+    EXPECT_EQ(j["optimize_tried"][1], "slower untangling schedule: injected failure");
+    EXPECT_EQ(j["optimize_tried"][2], "selective padding: nothing to pad");
     EXPECT_EQ(j["final"]["inverted"], 0);
     const core::HexMesh gridded = core::hexes_of(io::read_mesh(out / "hex.mesh"));
     const core::HexMesh final_mesh = core::hexes_of(io::read_mesh(out / "hex_optimized.mesh"));
     EXPECT_EQ(static_cast<int>(gridded.cells.size()), j["hexes"].get<int>());
     hexes[n - 1] = j["hexes"].get<int>();
-    if (n == 1) {
+    if (n == 2) {
       // The padded mesh: the gridded hexes and one more per boundary quad, the layer flagged.
       EXPECT_NE(r.out.find("fell back to global padding"), std::string::npos) << r.out;
       EXPECT_EQ(j["padding"]["applied"], "global (optimize fallback)");
@@ -555,19 +575,10 @@ TEST(RunCli, OptimizeFallsBackToPaddingThenNewGriddingsAndTheReportNamesThem) {
     EXPECT_EQ(j["padding"]["applied"], "none (nothing to pad)");  // the default selective padding
     EXPECT_FALSE(fs::exists(out / "hex_padded.mesh"));
   }
-  EXPECT_GT(hexes[2], hexes[1]);  // twice the target: a finer grid
-  const CliResult r = run(dir / "box.obj", dir / "out4", "--hexes 200 --inject-failure optimize-step-4");
-  expect_stopped_at(r, dir / "out4", "optimize", 3, {"input", "construct", "simplify", "hexmesh"});
-  EXPECT_EQ(read_report(dir / "out4")["optimize_tried"].size(), 4u);
-}
-
-//! hex.mesh is the gridding that was optimized: the final mesh has its hexes, as many as the
-//! report says.
-void expect_final_mesh_is_the_gridding(const fs::path& out, const nlohmann::json& j) {
-  const core::HexMesh gridded = core::hexes_of(io::read_mesh(out / "hex.mesh"));
-  const core::HexMesh final_mesh = core::hexes_of(io::read_mesh(out / "hex_optimized.mesh"));
-  EXPECT_EQ(gridded.cells, final_mesh.cells);
-  EXPECT_EQ(static_cast<int>(final_mesh.cells.size()), j["hexes"].get<int>());
+  EXPECT_GT(hexes[3], hexes[2]);  // twice the target: a finer grid
+  const CliResult r = run(dir / "box.obj", dir / "out5", "--hexes 200 --inject-failure optimize-step-5");
+  expect_stopped_at(r, dir / "out5", "optimize", 3, {"input", "construct", "simplify", "hexmesh"});
+  EXPECT_EQ(read_report(dir / "out5")["optimize_tried"].size(), 5u);
 }
 
 // A mesh whose boundary crosses itself (and nothing else wrong) is first optimized again from the
@@ -576,16 +587,28 @@ void expect_final_mesh_is_the_gridding(const fs::path& out, const nlohmann::json
 TEST(RunCli, ABoundaryThatCrossesItselfIsOptimizedAgainWithAStifferBarrierFirst) {
   const fs::path dir = temp_dir("optimize_crossing");
   write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
-  const CliResult r = run(dir / "box.obj", dir / "out", "--hexes 200 --inject-failure optimize-crossing-1");
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto j = read_report(dir / "out");
-  EXPECT_EQ(j["optimize_fallback"], "stiffer boundary barrier");
-  ASSERT_EQ(j["optimize_tried"].size(), 1u);
-  EXPECT_EQ(j["optimize_tried"][0], "first grid: injected boundary crossing");
-  EXPECT_EQ(j["final"]["inverted"], 0);
-  expect_final_mesh_is_the_gridding(dir / "out", j);
+  // The first n results count as crossing themselves; the run names `fallback`, with the same
+  // gridded hexes, no more.
+  const auto crossing_run = [&](int n, const std::string& fallback) {
+    const fs::path out = dir / ("out" + std::to_string(n));
+    const CliResult r = run(dir / "box.obj", out, "--hexes 200 --inject-failure optimize-crossing-" + std::to_string(n));
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    const auto j = read_report(out);
+    EXPECT_EQ(j["optimize_fallback"], fallback);
+    EXPECT_EQ(j["optimize_tried"].size(), static_cast<std::size_t>(n));
+    EXPECT_EQ(j["optimize_tried"][0], "first grid: injected boundary crossing");
+    EXPECT_EQ(j["final"]["inverted"], 0);
+    expect_final_mesh_is_the_gridding(out, j);
+    return j;
+  };
+  crossing_run(1, "stiffer boundary barrier");
   // A failure that is not a crossing skips this retry (the padding fallbacks come first there:
   // OptimizeFallsBackToPaddingThenNewGriddingsAndTheReportNamesThem).
+
+  // When the stiffer barrier's mesh crosses itself too, the same grid with the paper's slower
+  // untangling schedule comes next, before any padding.
+  const auto j = crossing_run(2, "slower untangling schedule");
+  EXPECT_EQ(j["optimize_tried"][1], "stiffer boundary barrier: injected boundary crossing");
 }
 
 //! The box of the distance tests through run without any fallback: its mesh is on its surface.
