@@ -329,7 +329,8 @@ MilpResult solve_program(const LinearProgram& p, const MilpOptions& options) {
   // problem ran in the primal simplex for over 10 minutes under a 60 s limit.
   if (options.time_limit > 0) si.getModelPtr()->setMaximumWallSeconds(options.time_limit);
   si.initialSolve();
-  core::logger().debug("milp: relaxation {:.6f}, {:.1f} s", si.getObjValue(), clock.seconds());
+  core::logger().debug("milp: relaxation {:.6f}, {} simplex iterations, {:.1f} s", si.getObjValue(),
+                       si.getIterationCount(), clock.seconds());
   PC_REQUIRE(options.start.empty() || static_cast<int>(options.start.size()) == n, "start solution has the wrong size");
   if (si.getModelPtr()->status() == kStoppedOnLimit)
     return stopped_at_the_limit(p, options, nullptr, bound_over_the_box(p),
