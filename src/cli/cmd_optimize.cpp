@@ -149,8 +149,8 @@ void register_optimize(CLI::App& app) {
       ->check(cli::non_negative())
       ->capture_default_str();
   sub->add_option("--quality-patience", oo.quality_patience,
-                  "The quality rounds stop once this many in a row were neither kept nor higher in mSJ than the "
-                  "round before them (0: all --quality-rounds run)")
+                  "The quality rounds stop once this many in a row after the first were neither kept nor higher "
+                  "in mSJ than the round before them (0: all --quality-rounds run)")
       ->check(cli::non_negative())
       ->capture_default_str();
   sub->add_option("--quality-iterations", oo.quality_iterations, "Outer iterations per quality round at most")

@@ -551,6 +551,9 @@ void quality_rounds(Optimization& w, const Start& start, double face_weight, Bes
   std::fill(w.multiplier.begin(), w.multiplier.end(), 1.0);
   // How many rounds in a row were neither kept nor higher in mSJ than the round before them. A
   // round not kept but higher may lead to one that is (the worst hexes weigh more each round).
+  // Round 0 never counts: it has no round before it, only the start, and no heavier weights
+  // yet (a graded grid's round 0 falls below the start and the next rounds climb to a kept one:
+  // HexOptimize.SizeUniformityEvensOutAGradedMesh).
   int stalled = 0;
   double previous_min = best.summary.min;
   for (int round = 0; round < w.o.quality_rounds; ++round) {
@@ -580,7 +583,7 @@ void quality_rounds(Optimization& w, const Start& start, double face_weight, Bes
       best.points = w.mesh.points;
       ++res.rounds_accepted;
     }
-    stalled = better || s.min > previous_min ? 0 : stalled + 1;
+    stalled = better || round == 0 || s.min > previous_min ? 0 : stalled + 1;
     previous_min = s.min;
     if (progress) progress->step();
   }

@@ -53,11 +53,12 @@ struct OptimizeOptions {
   int local_untangle_rings = 0;
   int quality_rounds = 6;         //!< quality rounds (each reweights the worst hexes)
   int quality_iterations = 15;    //!< outer iterations per quality round at most
-  //! The quality rounds stop once this many in a row were neither kept nor higher in mSJ than
-  //! the round before them (0: all quality_rounds run). Each round weighs the same worst hexes
-  //! heavier: rounds that are not kept but climb may lead to one that is; rounds that fall
-  //! seldom do, and each costs as much as a kept one.
-  int quality_patience = 2;
+  //! The quality rounds stop once this many in a row after round 0 were neither kept nor higher
+  //! in mSJ than the round before them (0: all quality_rounds run). Each round weighs the same worst hexes
+  //! heavier: rounds that are not kept but climb may lead to one that is; after a round that
+  //! falls, the next (heavier still) fell too on every shared shape, so one is enough
+  //! (bench/RESULTS.md, stop 56: the same files on all 17, the optimizer's time 0.82).
+  int quality_patience = 1;
   //! After an untangling phase, quality rounds may lower the average scaled Jacobian by this
   //! much (a valid input's average is never lowered).
   double average_slack = 0.01;

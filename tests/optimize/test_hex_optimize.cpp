@@ -124,15 +124,22 @@ TEST(HexOptimize, TangledBoundaryUntanglesOnTheSurface) {
 }
 
 // A grid of perfect cubes on its box: no quality round can raise the minimum (1), so none is
-// kept; with the default patience the rounds stop after two, and the mesh is the one all six
-// rounds give.
-TEST(HexOptimize, QualityRoundsStopAfterTwoRoundsInARowNotKept) {
+// kept or climbs; the rounds stop after round 0 (which never counts) and `patience` more (the
+// default: one), and the mesh is the one all six rounds give.
+TEST(HexOptimize, QualityRoundsStopAfterPatienceRoundsInARowNotKept) {
   core::HexMesh stopped = test::box_grid(4, 4, 4);
+  core::HexMesh two = stopped;
   core::HexMesh all = stopped;
   const core::TriMesh box = test::box_surface();
+  EXPECT_EQ(optimize::OptimizeOptions{}.quality_patience, 1);
   const auto r = optimize::optimize_hex_mesh(stopped, box);
   EXPECT_EQ(r.rounds_accepted, 0);
   EXPECT_EQ(r.rounds_run, 2);
+  optimize::OptimizeOptions p;
+  p.quality_patience = 2;
+  const auto r_two = optimize::optimize_hex_mesh(two, box, p);
+  EXPECT_EQ(r_two.rounds_run, 3);
+  EXPECT_EQ(two.points, stopped.points);
   optimize::OptimizeOptions o;
   o.quality_patience = 0;
   const auto r_all = optimize::optimize_hex_mesh(all, box, o);
