@@ -6,7 +6,8 @@
 //!     boundary barrier kBarrierRetry times stiffer (keeps the hexes the user asked for);
 //!     steps 1–2 run with the optimizer's fast ε schedule (OptimizeOptions::untangle_min_sigma)
 //!     and, when neither passes, once more with the paper's slower one ("slower untangling
-//!     schedule"), which step 4 also uses;
+//!     schedule"), which step 4 also uses; with the fast schedule, step 2 runs only for a
+//!     crossing found right after the untangling;
 //!  3. the first result padded selectively, then globally, and optimized again (the new layer
 //!     frees the boundary hexes the gridding squashed; thesis ch. 4);
 //!  4. the map gridded again with its own sizing, then twice as fine, and optimized;
