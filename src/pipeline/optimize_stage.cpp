@@ -246,7 +246,8 @@ class OptimizeStage {
     why_ = injected ? std::string("injected distance")
                     : fmt::format("{:.2f} % of the diagonal from the input (bound {:.2f} %)", 100 * far, 100 * bound);
     record_failure();
-    const Finer first{r_.optimize_fallback, o_.target_hexes, {}, r_.iterations_optimize, false, {}};
+    const std::string first_name = r_.optimize_fallback;
+    const Finer first{first_name, o_.target_hexes, {}, r_.iterations_optimize, false, first_name};
     Finer kept = first;
     const std::vector<core::Vec3> near =
         o_.refine_far ? mesh::polycube_points(map_, far_points(d)) : std::vector<core::Vec3>{};
@@ -264,7 +265,7 @@ class OptimizeStage {
       kept.iterations = r_.iterations_optimize;
       kept.fallback = r_.optimize_fallback;  // with the schedule or retry that gave it
     }
-    r_.optimize_fallback = kept.fallback.empty() ? kept.name : kept.fallback;
+    r_.optimize_fallback = kept.fallback;
     r_.iterations_optimize = kept.iterations;
     if (gridded_ != kept.name)  // the kept mesh's gridding was overwritten
       grid_and_write(map_, kept.target_hexes, sizing_, out_dir_, r_, wrote_, kept.near);

@@ -591,7 +591,8 @@ TEST(RunCli, ABoundaryThatCrossesItselfIsOptimizedAgainWithAStifferBarrierFirst)
   // gridded hexes, no more.
   const auto crossing_run = [&](int n, const std::string& fallback) {
     const fs::path out = dir / ("out" + std::to_string(n));
-    const CliResult r = run(dir / "box.obj", out, "--hexes 200 --inject-failure optimize-crossing-" + std::to_string(n));
+    const std::string inject = "--inject-failure optimize-crossing-" + std::to_string(n);
+    const CliResult r = run(dir / "box.obj", out, "--hexes 200 " + inject);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     const auto j = read_report(out);
     EXPECT_EQ(j["optimize_fallback"], fallback);
