@@ -174,12 +174,16 @@ class Untangling {
     const core::TetMesh& mesh = lm_.mesh;
     const mapping::BoundaryFirstResult bf =
         mapping::place_boundary_first(mesh.points, mesh.cells, lm_.boundary, lm_.labels, lm_.charts.vertex_group,
-                                      valid, map_options_.untangle, map_options_.ghost_height);
+                                      valid, map_options_.untangle, map_options_.ghost_height, placement_sigma_);
+    // A tangle the fast schedule left was hard: the next placements of this deformation (the
+    // same shape, refined) go straight to the paper's schedule instead of trying it first again.
+    if (bf.volume_step.slower_schedule) placement_sigma_ = 0.0;
     core::logger().info("deform: boundary-first placement: {} chains ({} reversed); charts {} ({} facing away, {:.1f} "
-                        "s); volume {} ({} inverted, {:.1f} s){}{}",
+                        "s); volume {} ({} inverted, {:.1f} s{}){}{}",
                         bf.chains, bf.reversed_chains, bf.chart_step.untangled ? "untangled" : "tangled", bf.charts_inverted,
                         bf.chart_step.seconds, bf.volume_step.untangled ? "untangled" : "tangled", bf.tets_inverted,
-                        bf.volume_step.seconds, bf.valid ? "" : ": ", bf.reason);
+                        bf.volume_step.seconds, bf.volume_step.slower_schedule ? ", the slower ε schedule after the fast one" : "",
+                        bf.valid ? "" : ": ", bf.reason);
     if (!bf.locked_triangles.empty() && unlocks_ < kMaxUnlocks && unlock(bf.locked_triangles)) {
       ++unlocks_;
       return place_boundary_first();
@@ -245,6 +249,8 @@ class Untangling {
   DeformResult& res_;
   mapping::UntangleMapOptions map_options_;
   bool use_boundary_first_;
+  //! The placement's fast ε schedule (mapping::place_boundary_first), until it fails once.
+  double placement_sigma_ = mapping::kFastPlacementSigma;
   int placements_ = 0;  // boundary-first placements retried after a refinement
   int unlocks_ = 0;     // placements retried after unlock()
 };

@@ -257,7 +257,8 @@ bool place_charts(const std::vector<Vec3>& points, const std::vector<Tri>& tris,
 //! res.reason set (and res.placement when only tets stay inverted) on failure.
 bool place_volume(const std::vector<Vec3>& points, const std::vector<core::Tet>& tets,
                   const std::vector<int>& vertex_group, const std::vector<char>& on_boundary,
-                  const solve::UntangleOptions& base, std::vector<Vec3>& Q, BoundaryFirstResult& res) {
+                  const solve::UntangleOptions& base, double fast_sigma, std::vector<Vec3>& Q,
+                  BoundaryFirstResult& res) {
   const int nv = static_cast<int>(points.size());
   std::vector<int> var(3 * static_cast<std::size_t>(nv), -1);
   int n = 0;
@@ -275,7 +276,8 @@ bool place_volume(const std::vector<Vec3>& points, const std::vector<core::Tet>&
   Eigen::VectorXd y(n);
   for (std::size_t i = 0; i < var.size(); ++i)
     if (var[i] >= 0) y[var[i]] = Q[i / 3][i % 3];
-  res.volume_step = solve::untangle(solve::reference_elements(points, tets), R, y, fixed_boundary_options(base));
+  res.volume_step = solve::untangle_fast_first(solve::reference_elements(points, tets), R, y,
+                                               fixed_boundary_options(base), fast_sigma);
   const Eigen::VectorXd x = R.apply(y);
   for (int v = 0; v < nv; ++v)
     if (!on_boundary[v]) Q[v] = x.segment<3>(3 * v);
@@ -307,7 +309,7 @@ bool place_volume(const std::vector<Vec3>& points, const std::vector<core::Tet>&
 BoundaryFirstResult place_boundary_first(const std::vector<Vec3>& points, const std::vector<core::Tet>& tets,
                                          const std::vector<Tri>& tris, const std::vector<int>& labels,
                                          const std::vector<int>& vertex_group, std::vector<Vec3>& P,
-                                         const solve::UntangleOptions& base, double h) {
+                                         const solve::UntangleOptions& base, double h, double fast_sigma) {
   BoundaryFirstResult res;
   const int nv = static_cast<int>(points.size());
   PC_REQUIRE(P.size() == points.size() && vertex_group.size() == 3 * points.size() && labels.size() == tris.size(),
@@ -327,7 +329,7 @@ BoundaryFirstResult place_boundary_first(const std::vector<Vec3>& points, const 
   for (const Tri& t : tris)
     for (int v : t) on_boundary[v] = 1;
   if (!place_charts(points, tris, labels, vertex_group, on_boundary, h, base, Q, res)) return res;
-  if (!place_volume(points, tets, vertex_group, on_boundary, base, Q, res)) return res;
+  if (!place_volume(points, tets, vertex_group, on_boundary, base, fast_sigma, Q, res)) return res;
   res.valid = true;
   P.swap(Q);
   return res;

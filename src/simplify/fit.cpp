@@ -277,7 +277,8 @@ void fit_boundary_first(const core::PolycubeMap& map, const FitBoundary& b, cons
   std::vector<core::Tet> real(map.tets.begin(), map.tets.end());
   std::vector<Vec3> placed = pos;
   const mapping::BoundaryFirstResult bf =
-      mapping::place_boundary_first(pl.old_pos, real, b.tris, b.labels, group, placed, uo, b.h * scale);
+      mapping::place_boundary_first(pl.old_pos, real, b.tris, b.labels, group, placed, uo, b.h * scale,
+                                    mapping::kFastPlacementSigma);
   core::logger().info("fit: {} tets stay inverted; boundary-first placement {}{}", count_nonpositive(map.tets, pos),
                       bf.valid ? "valid" : "failed: ", bf.reason);
   if (!bf.valid) return;

@@ -1051,4 +1051,21 @@ std::pair<Eigen::SparseMatrix<double>, Eigen::VectorXd> detail::newton_system(co
   return {std::move(H), std::move(g)};
 }
 
+UntangleResult untangle_fast_first(const TetElements& el, const LinearReduction& R, Eigen::VectorXd& y,
+                                   const UntangleOptions& o, double fast_sigma) {
+  if (o.min_sigma >= fast_sigma) return untangle(el, R, y, o);
+  UntangleOptions fast = o;
+  fast.min_sigma = fast_sigma;
+  const Eigen::VectorXd start = y;
+  const UntangleResult first = untangle(el, R, y, fast);
+  if (first.untangled || (o.expired && o.expired())) return first;
+  core::logger().debug("untangle: {} elements stay inverted with ε falling by {} or more: from the start again, by {}",
+                       first.inverted_after, fast_sigma, o.min_sigma);
+  y = start;
+  UntangleResult second = untangle(el, R, y, o);
+  second.slower_schedule = true;
+  second.seconds += first.seconds;
+  return second;
+}
+
 }  // namespace polycube::solve

@@ -185,6 +185,9 @@ struct UntangleResult {
   double energy = 0;          //!< final energy (with the final ε)
   double epsilon = 0;         //!< final ε
   double seconds = 0;         //!< wall time
+  //! untangle_fast_first(): the fast schedule left elements inverted, so the options' own ran
+  //! from the start again (seconds: both runs')
+  bool slower_schedule = false;
 };
 
 //! Untangle and optimize: minimize the energy over y, starting from y (updated in place).
@@ -196,6 +199,15 @@ struct UntangleResult {
 //! \throw core::InternalError on inconsistent sizes
 UntangleResult untangle(const TetElements& elements, const LinearReduction& reduction,
                         Eigen::VectorXd& y, const UntangleOptions& options = {});
+
+//! untangle() with ε falling at least `fast_sigma` per outer iteration first (options.min_sigma
+//! raised to it) and, when that leaves elements inverted, again from the same y with the
+//! options' own schedule (result.slower_schedule), whose result is then exactly untangle()'s.
+//! While ε is far above the |det| of the few inverted elements of a mild tangle, the paper's
+//! tenth per iteration only waits for it to come down; a hard tangle unfolds more surely under
+//! the slower fall (bench/RESULTS.md, stop 53), at the cost of the fast attempt.
+UntangleResult untangle_fast_first(const TetElements& elements, const LinearReduction& reduction,
+                                   Eigen::VectorXd& y, const UntangleOptions& options, double fast_sigma);
 
 namespace detail {
 //! The Newton system untangle() assembles at y, exposed for tests: the upper triangle of the

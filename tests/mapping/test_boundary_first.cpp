@@ -96,7 +96,7 @@ TEST(BoundaryFirst, ScrambledPolycubeGetsStraightEdgesAndNoInvertedTet) {
 
   solve::UntangleOptions o;
   o.min_det_target = 1e-6;
-  const auto r = mapping::place_boundary_first(s.mesh.points, s.mesh.cells, s.tris, s.labels, s.group, P, o, 0.5);
+  const auto r = mapping::place_boundary_first(s.mesh.points, s.mesh.cells, s.tris, s.labels, s.group, P, o, 0.5, mapping::kFastPlacementSigma);
   ASSERT_TRUE(r.valid) << r.reason;
   EXPECT_TRUE(r.reason.empty());
   EXPECT_EQ(r.tets_inverted, 0);
@@ -129,7 +129,7 @@ TEST(BoundaryFirst, MirroredPolycubeHasItsChartPlanesPutBackInTheModelsOrder) {
   for (Vec3& p : P) p.x() = -p.x();
   solve::UntangleOptions o;
   o.min_det_target = 1e-6;
-  const auto r = mapping::place_boundary_first(s.mesh.points, s.mesh.cells, s.tris, s.labels, s.group, P, o, 0.5);
+  const auto r = mapping::place_boundary_first(s.mesh.points, s.mesh.cells, s.tris, s.labels, s.group, P, o, 0.5, mapping::kFastPlacementSigma);
   ASSERT_TRUE(r.valid) << r.reason;
   EXPECT_GT(r.reversed_chains, 0);
   EXPECT_LT(r.reversed_chains, r.chains);  // the edges along y and z kept their direction
@@ -160,7 +160,7 @@ TEST(BoundaryFirst, SqueezedPolycubeEdgesAreLengthenedToAQuarterOfTheModels) {
   for (Vec3& p : P) p.x() *= 0.02;
   solve::UntangleOptions o;
   o.min_det_target = 1e-6;
-  const auto r = mapping::place_boundary_first(s.mesh.points, s.mesh.cells, s.tris, s.labels, s.group, P, o, 0.5);
+  const auto r = mapping::place_boundary_first(s.mesh.points, s.mesh.cells, s.tris, s.labels, s.group, P, o, 0.5, mapping::kFastPlacementSigma);
   ASSERT_TRUE(r.valid) << r.reason;
   EXPECT_EQ(r.reversed_chains, 0);
   for (const auto& c : s.mesh.cells) EXPECT_GT(test::tet_det(P, c), 0.0);
@@ -183,7 +183,7 @@ TEST(BoundaryFirst, OppositeChartsSharingAnEdgeAreRefusedAndLeftAsTheyWere) {
   std::vector<Vec3> P = s.mesh.points;
   for (Vec3& p : P) p.x() *= 1.3;
   const std::vector<Vec3> before = P;
-  const auto r = mapping::place_boundary_first(s.mesh.points, s.mesh.cells, s.tris, s.labels, s.group, P, {}, 0.5);
+  const auto r = mapping::place_boundary_first(s.mesh.points, s.mesh.cells, s.tris, s.labels, s.group, P, {}, 0.5, mapping::kFastPlacementSigma);
   EXPECT_FALSE(r.valid);
   EXPECT_NE(r.reason.find("share an edge"), std::string::npos) << r.reason;
   EXPECT_EQ(P, before);

@@ -449,5 +449,88 @@ TEST(Untangle, AttractionPullsFreeVertex) {
   for (int v = 0; v < 3; ++v) EXPECT_NEAR((p[v] - ref[v] - Vec3(5, 0, 0)).norm(), 0.0, 1e-2);
 }
 
+
+// A grid of kCells³ cells split into tets, the boundary fixed, and every interior vertex moved
+// by up to `reach` cells along each axis (mt19937, fully specified by the standard): a tangle
+// of many inverted tets all through the volume, harder the larger the reach.
+struct ThrownGrid {
+  core::TetMesh reference;
+  solve::LinearReduction reduction;
+  Eigen::VectorXd start;  // the free coordinates
+};
+
+ThrownGrid thrown_grid(int cells, double reach, unsigned seed) {
+  ThrownGrid g;
+  g.reference = test::tetrahedralize(test::hex_grid(cells, cells, cells));
+  const int nv = g.reference.num_points();
+  std::vector<int> var(3 * static_cast<std::size_t>(nv), -1);
+  int nvar = 0;
+  std::mt19937 rng(seed);
+  std::vector<Vec3> moved = g.reference.points;
+  for (int v = 0; v < nv; ++v) {
+    const Vec3& p = g.reference.points[v];
+    if ((p.array() == 0.0).any() || (p.array() == cells).any()) continue;
+    for (int d = 0; d < 3; ++d) {
+      var[3 * v + d] = nvar++;
+      moved[v][d] += reach * (2.0 * static_cast<double>(rng()) / static_cast<double>(std::mt19937::max()) - 1.0);
+    }
+  }
+  const Eigen::VectorXd x = solve::flatten(moved);
+  g.reduction = solve::index_reduction(var, nvar, x);
+  g.start.resize(nvar);
+  for (int i = 0; i < 3 * nv; ++i)
+    if (var[i] >= 0) g.start[var[i]] = x[i];
+  return g;
+}
+
+constexpr double kFast = 0.2;
+
+struct ScheduleRun {
+  solve::UntangleResult result;
+  Eigen::VectorXd y;
+};
+
+//! untangle() of the thrown grid with the floor `sigma`, or untangle_fast_first() with kFast
+//! before it.
+ScheduleRun run_schedule(const ThrownGrid& g, double sigma, bool fast_first) {
+  const solve::TetElements el = solve::reference_elements(g.reference.points, g.reference.cells);
+  solve::UntangleOptions o;
+  o.min_sigma = sigma;
+  ScheduleRun r{{}, g.start};
+  r.result = fast_first ? solve::untangle_fast_first(el, g.reduction, r.y, o, kFast)
+                        : solve::untangle(el, g.reduction, r.y, o);
+  return r;
+}
+
+// untangle_fast_first: where ε falling by a fifth per iteration leaves a tet inverted (seed 9 of
+// the thrown grid: one after 148 iterations), the paper's schedule runs from the same start,
+// and the result is exactly untangle()'s with it.
+TEST(Untangle, FastScheduleFirstFallsBackToTheOwnScheduleFromTheSameStart) {
+  const ThrownGrid g = thrown_grid(6, 1.5, 9);
+  const ScheduleRun fast = run_schedule(g, kFast, false);
+  ASSERT_FALSE(fast.result.untangled) << "the fast schedule untangles this seed";
+  const ScheduleRun paper = run_schedule(g, 0.1, false);
+  ASSERT_TRUE(paper.result.untangled);
+  const ScheduleRun r = run_schedule(g, 0.1, true);
+  EXPECT_TRUE(r.result.untangled);
+  EXPECT_TRUE(r.result.slower_schedule);
+  EXPECT_EQ(r.result.iterations, paper.result.iterations);
+  EXPECT_EQ(r.y, paper.y);
+}
+
+// Where the fast schedule untangles (seed 3), its result is kept as it is: no second run.
+TEST(Untangle, FastScheduleFirstKeepsTheFastResultWhereItUntangles) {
+  const ThrownGrid g = thrown_grid(6, 1.5, 3);
+  const ScheduleRun fast = run_schedule(g, kFast, false);
+  ASSERT_TRUE(fast.result.untangled);
+  for (double own : {0.1, kFast}) {  // a caller whose own floor is already that high: untangle() itself
+    const ScheduleRun r = run_schedule(g, own, true);
+    EXPECT_TRUE(r.result.untangled);
+    EXPECT_FALSE(r.result.slower_schedule);
+    EXPECT_EQ(r.result.iterations, fast.result.iterations);
+    EXPECT_EQ(r.y, fast.y);
+  }
+}
+
 }  // namespace
 }  // namespace polycube
