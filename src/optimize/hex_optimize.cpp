@@ -519,7 +519,22 @@ struct Start {
   std::vector<Vec3> points;
   int inverted = 0;      //!< corner and centre Jacobians <= 0
   double average = 0.0;  //!< a round may not lower the average scaled Jacobian below this
+  //! The start is valid and its boundary does not cross itself: no state whose boundary crosses
+  //! itself is kept (crosses_where_start_does_not).
+  bool uncrossed = false;
 };
+
+bool boundary_crosses(const core::HexMesh& mesh) {
+  return check_foldover(mesh, {1}).boundary_self_intersections > 0;
+}
+
+//! Whether the mesh's boundary crosses itself where the valid start's does not. Such a state would
+//! fail the fold-over check at the end, and every later round starts from the kept state: keeping
+//! it threw the whole optimization away (`run` optimized again from scratch with another
+//! schedule), where the last state kept before it was valid.
+bool crosses_where_start_does_not(const core::HexMesh& mesh, const Start& start) {
+  return start.uncrossed && boundary_crosses(mesh);
+}
 
 //! The best state of the quality phase so far.
 struct Best {
@@ -571,12 +586,15 @@ void quality_rounds(Optimization& w, const Start& start, double face_weight, Bes
     add(res.quality, r);
     const quality::ScaledJacobianSummary s = summary(w.mesh, true);
     const int inv = inverted_jacobians(w.mesh);
-    const bool better =
+    bool better =
         inv < best.inverted || (inv == best.inverted && inv > 0 && s.min > best.summary.min) ||
         (inv == 0 && best.inverted == 0 && s.min > best.summary.min && s.average >= start.average);
+    const bool crosses = better && inv == 0 && crosses_where_start_does_not(w.mesh, start);
+    better = better && !crosses;
     core::logger().info(
         "optimize: quality round {}: {} iterations, mSJ {:.4f} aSJ {:.4f} inverted Jacobians {}{}",
-        round, r.iterations, s.min, s.average, inv, better ? "" : " (not kept)");
+        round, r.iterations, s.min, s.average, inv,
+        crosses ? " (not kept: its boundary crosses itself)" : better ? "" : " (not kept)");
     if (better) {
       best.summary = s;
       best.inverted = inv;
@@ -618,7 +636,7 @@ double drift_retries(Optimization& w, const Start& start, Best& best, OptimizeRe
         quality_options(o, o.quality_iterations * std::max(1, o.quality_rounds));
     const solve::UntangleResult r = run(w, uo, false, o.face_attraction);
     add(res.quality, r);
-    if (inverted_jacobians(mesh) > 0) {  // never trade validity for the surface
+    if (inverted_jacobians(mesh) > 0 || crosses_where_start_does_not(mesh, start)) {  // never trade validity for the surface
       mesh.points = best.points;
       break;
     }
@@ -764,7 +782,8 @@ void quality_phase(Optimization& w, OptimizeResult& res, core::ProgressTask& pro
   // Keep the average: exactly when the input was valid; after untangling, within a small slack
   // (the untangled state's average is not a quality the user asked to keep).
   const Start start{mesh.points, best.inverted,
-                    best.summary.average - (res.untangle.iterations > 0 ? o.average_slack : 0.0)};
+                    best.summary.average - (res.untangle.iterations > 0 ? o.average_slack : 0.0),
+                    best.inverted == 0 && !boundary_crosses(mesh)};
   if (const double snapped = fit_from_start(w, start); snapped > 0) {
     fitted_rounds(w, start, snapped, best, res, progress);
   } else {
