@@ -24,6 +24,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -562,7 +563,7 @@ void weigh_worst_hexes(const quality::ScaledJacobianSummary& best,
 //! The quality rounds from the best points (multipliers from 1), keeping the best state.
 //! One step of `progress` per round, when given.
 void quality_rounds(Optimization& w, const Start& start, double face_weight, Best& best,
-                    OptimizeResult& res, core::ProgressTask* progress) {
+                    OptimizeResult& res, core::ProgressTask* progress, std::vector<Best>* earlier = nullptr) {
   std::fill(w.multiplier.begin(), w.multiplier.end(), 1.0);
   // How many rounds in a row were neither kept nor higher in mSJ than the round before them. A
   // round not kept but higher may lead to one that is (the worst hexes weigh more each round).
@@ -596,6 +597,7 @@ void quality_rounds(Optimization& w, const Start& start, double face_weight, Bes
         round, r.iterations, s.min, s.average, inv,
         crosses ? " (not kept: its boundary crosses itself)" : better ? "" : " (not kept)");
     if (better) {
+      if (earlier) earlier->push_back(best);
       best.summary = s;
       best.inverted = inv;
       best.points = w.mesh.points;
@@ -725,15 +727,57 @@ void fit_retry(Optimization& w, const Start& start, double best_hausdorff, Best&
   }
 }
 
+//! When the best round's boundary, put on the target, is beyond the Hausdorff bound: the last
+//! round kept before it whose boundary is within the bound, put on the target the same way (the
+//! rounds are kept in rising mSJ, so its mSJ is the highest within the bound they reached;
+//! `earlier`: the best state before each kept round, in order). The heavier weights of a later
+//! round can pull the worst hexes' boundary vertices off the target farther than the snap can put
+//! back; the retries that follow (drift, fit) start over from the rounds' start and keep their own
+//! result, which can be lower in mSJ than that round (prefer_within_bound).
+std::optional<Best> last_round_within_bound(Optimization& w, const std::vector<Best>& earlier) {
+  if (w.o.hausdorff_bound <= 0 || earlier.size() < 2 || w.hausdorff() <= w.o.hausdorff_bound) return std::nullopt;
+  const std::vector<Vec3> last = w.mesh.points;
+  std::optional<Best> found;
+  // earlier[0] is the state before the first kept round (the rounds' start): not a round's.
+  for (auto it = earlier.rbegin(); it + 1 != earlier.rend() && it->inverted == 0; ++it) {
+    w.mesh.points = it->points;
+    w.pb.snap(w.mesh, it->summary.min);
+    if (w.hausdorff() > w.o.hausdorff_bound) continue;
+    found = Best{summary(w.mesh, true), 0, w.mesh.points};
+    break;
+  }
+  w.mesh.points = last;
+  return found;
+}
+
+//! The result of the retries, or the round within the bound when that is higher in mSJ or the
+//! retries' result is beyond the bound (or not valid).
+void prefer_within_bound(Optimization& w, const std::optional<Best>& within, Best& best) {
+  if (!within) return;
+  const double h = w.hausdorff();
+  const quality::ScaledJacobianSummary now = summary(w.mesh, true);
+  const bool take = inverted_jacobians(w.mesh) > 0 || h > w.o.hausdorff_bound || within->summary.min > now.min;
+  core::logger().info("optimize: an earlier round within the bound: mSJ {:.4f}; the retries' result: mSJ {:.4f} at "
+                      "{:.3f} %{}",
+                      within->summary.min, now.min, 100 * h, take ? ": the earlier round kept" : "");
+  if (!take) return;
+  best = *within;
+  w.mesh.points = within->points;
+}
+
 //! The quality rounds as they are asked for, then the final snap and the drift retries. Returns
 //! the Hausdorff distance of the result (0 when not measured).
 double plain_rounds(Optimization& w, const Start& start, Best& best, OptimizeResult& res,
-                    core::ProgressTask* progress) {
-  quality_rounds(w, start, w.o.face_attraction, best, res, progress);
+                    core::ProgressTask* progress, std::optional<Best>& within) {
+  std::vector<Best> earlier;
+  quality_rounds(w, start, w.o.face_attraction, best, res, progress, &earlier);
   // Finally put the boundary exactly on the target where that keeps every hex at or above the
   // minimum reached (and inverts nothing); not when the boundary fits the surface by its quad
   // centres too (the vertices are then meant to be off it by a fraction of the chord).
-  if (w.o.face_attraction <= 0) w.pb.snap(w.mesh, best.summary.min);
+  if (w.o.face_attraction <= 0) {
+    w.pb.snap(w.mesh, best.summary.min);
+    within = last_round_within_bound(w, earlier);
+  }
   // Then the retries, when the boundary is beyond the Hausdorff bound.
   return drift_retries(w, start, best, res);
 }
@@ -758,7 +802,8 @@ void fitted_rounds(Optimization& w, const Start& start, double snapped, Best& be
   const Best fit{best.summary, best.inverted, w.mesh.points};
   w.mesh.points = start.points;
   best = best_of(w.mesh);
-  double plain = plain_rounds(w, start, best, res, nullptr);
+  std::optional<Best> within;
+  double plain = plain_rounds(w, start, best, res, nullptr, within);
   if (plain <= 0) plain = w.hausdorff();
   if (fit.inverted == 0 && (best.inverted > 0 || (plain > w.o.hausdorff_bound && h < plain))) {
     core::logger().info("optimize: quad centres attracted: Hausdorff {:.3f} % (without: {:.3f} %), mSJ {:.4f}",
@@ -772,6 +817,7 @@ void fitted_rounds(Optimization& w, const Start& start, double snapped, Best& be
         "not kept",
         100 * h, 100 * plain);
   }
+  prefer_within_bound(w, within, best);
 }
 
 //! Phase 2: the quality rounds from the untangled mesh, keeping the best state, then the retries.
@@ -787,8 +833,10 @@ void quality_phase(Optimization& w, OptimizeResult& res, core::ProgressTask& pro
   if (const double snapped = fit_from_start(w, start); snapped > 0) {
     fitted_rounds(w, start, snapped, best, res, progress);
   } else {
-    const double hausdorff = plain_rounds(w, start, best, res, &progress);
+    std::optional<Best> within;
+    const double hausdorff = plain_rounds(w, start, best, res, &progress, within);
     fit_retry(w, start, hausdorff, best, res);
+    prefer_within_bound(w, within, best);
   }
 }
 
