@@ -68,7 +68,7 @@ BoundaryFirstResult place_boundary_first(const std::vector<core::Vec3>& points, 
 
 //! The placement's tangle between its fixed boundary is usually a few tets, and from ε = 1 the
 //! paper's schedule (a tenth per iteration) mostly waits for ε to come down to their |det|: a
-//! fifth reaches them in about half the iterations on the shared shapes (S3's one tet: 14 → 8).
+//! fifth reaches them in about half the iterations on the shared shapes (bench/RESULTS.md, stop 57).
 inline constexpr double kFastPlacementSigma = 0.2;
 
 }  // namespace polycube::mapping
