@@ -184,6 +184,15 @@ TEST(HexOptimize, PerturbedBoxKeepsCornersAndEdges) {
   EXPECT_TRUE(check.ok()) << check.reason();
 }
 
+//! The ball grid of n cells a side with its boundary vertices on `sphere`: every boundary quad a
+//! chord.
+core::HexMesh ball_on(const core::TriMesh& sphere, int n) {
+  const optimize::TargetSurface target(sphere, {});
+  core::HexMesh ball = test::ball_grid(n);
+  for (const int v : core::boundary(ball).vertex_map) ball.points[v] = target.closest_point(ball.points[v]);
+  return ball;
+}
+
 // Issue 8, cube_minus_sphere: the quality rounds raise the weights of the worst hexes, whose
 // shape energy then pulls some boundary vertices off the surface (there, by a third of an edge
 // length), and the final snap, which keeps the minimum reached, leaves them there. With drift
@@ -220,11 +229,8 @@ TEST(HexOptimize, WorstHexesKeepTheirBoundaryOnACurvedSurface) {
 // it whose boundary is within the bound is the result (the retries, off here, start over from
 // the rounds' start and may end lower; with them, the higher of the two in mSJ is kept).
 TEST(HexOptimize, WithoutRetriesTheLastRoundWithinTheBoundIsKept) {
-  const int n = 6;
-  core::HexMesh m = test::ball_grid(n);
   const core::TriMesh sphere = test::sphere_surface(4);
-  const optimize::TargetSurface target(sphere, {});
-  for (const int v : core::boundary(m).vertex_map) m.points[v] = target.closest_point(m.points[v]);
+  core::HexMesh m = ball_on(sphere, 6);
   optimize::OptimizeOptions o;
   o.drift_retries = 0;
   o.fit_retry = 0;
@@ -363,15 +369,6 @@ TEST(HexOptimize, SizeUniformityEvensOutAGradedMesh) {
   EXPECT_LT(quality::hausdorff_distance(even, box).relative, 1e-3);
   const auto check = optimize::check_foldover(even);
   EXPECT_TRUE(check.ok()) << check.reason();
-}
-
-//! The ball grid of n cells a side with its boundary vertices on `sphere`: every boundary quad a
-//! chord.
-core::HexMesh ball_on(const core::TriMesh& sphere, int n) {
-  const optimize::TargetSurface target(sphere, {});
-  core::HexMesh ball = test::ball_grid(n);
-  for (const int v : core::boundary(ball).vertex_map) ball.points[v] = target.closest_point(ball.points[v]);
-  return ball;
 }
 
 TEST(HexOptimize, FaceAttractionFitsInsteadOfInterpolating) {
