@@ -104,6 +104,7 @@ void run_construct(const ConstructCliOptions& o) {
       {"boundaries", r.boundaries},
       {"fidelity", r.fidelity},
       {"repair_moves", r.repair_moves},
+      {"cut_compactness", r.cut_compactness},
       {"attempt", r.attempt.name()},
       {"attempts", r.attempts},
       {"tried", r.tried},

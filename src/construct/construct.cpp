@@ -134,6 +134,7 @@ class Predeformations {
 //! estimate of the result (what the attempts are ordered by).
 struct AttemptLabeling {
   RepairResult repair;
+  double cut_compactness = 0;  //!< the compactness of the graph cut repaired (cut_for_repair)
   PolycubeEstimate estimate;
   bool valid = false;
 };
@@ -142,13 +143,15 @@ AttemptLabeling label_for_attempt(const core::TriMesh& s, const LabelingOptions&
                                   const ConstructOptions& o, ConstructTimes& seconds) {
   AttemptLabeling out;
   core::Stopwatch clock;
-  const LabelingResult lab = graph_cut_labeling(s, lopt);
-  seconds.label += clock.seconds();
-  clock.restart();
   RepairOptions ropt = o.repair;
-  ropt.energy = lopt;
   ropt.held = held;
-  out.repair = repair_labeling(s, lab.labels, ropt);
+  CutAndRepair cr = cut_and_repair(s, lopt, ropt);
+  out.cut_compactness = cr.cut.compactness;
+  out.repair = std::move(cr.repair);
+  ropt.energy = lopt;
+  ropt.energy.compactness = cr.cut.compactness;
+  seconds.label += clock.seconds();  // the cut and its repair
+  clock.restart();
   if (out.repair.valid()) out.repair = relabel_backward_charts(s, std::move(out.repair), ropt);
   if (out.repair.valid()) {
     out.estimate = estimate_polycube(s, out.repair.labels);
@@ -194,6 +197,7 @@ void refine_labeling(const core::TriMesh& s, const std::vector<core::Vec3>& shap
 struct AttemptResult {
   Attempt attempt;
   int repair_moves = 0;
+  double cut_compactness = 0;                //!< its labeling's graph cut (AttemptLabeling)
   std::optional<PredeformResult> predeform;  //!< its pre-deformation (points cleared)
   std::optional<DeformResult> deformation;   //!< empty when no valid labeling or an unrealizable one
   int failures = 0;                          //!< inverted tets + wrong-facing triangles (+1 when not untangled)
@@ -255,6 +259,7 @@ AttemptResult deform_attempt(const LabeledAttempt& la, const Model& model, const
   r.attempt = la.attempt;
   RepairResult rep = la.labeling.repair;
   r.repair_moves = rep.moves;
+  r.cut_compactness = la.labeling.cut_compactness;
   std::vector<core::Vec3> shape = model.boundary.surface.points;  // the chart boundaries are straightened on it
   if (const PredeformResult* pre = la.predeform) {
     for (std::size_t i = 0; i < shape.size(); ++i) shape[i] = pre->points[model.boundary.vertex_map[i]];
@@ -474,6 +479,7 @@ void report_attempt(const AttemptResult& kept, ConstructResult& res) {
   const DeformResult& d = *kept.deformation;
   res.attempt = kept.attempt;
   res.repair_moves = kept.repair_moves;
+  res.cut_compactness = kept.cut_compactness;
   if (kept.predeform) res.predeform = *kept.predeform;
   res.split_triangles = d.split_triangles;
   res.split_edges = d.split_edges;

@@ -25,10 +25,12 @@ void label_prepared(LabelSurfaceResult& res, const LabelSurfaceOptions& o) {
     res.predeform = predeform(res.mesh, res.boundary_triangles, o.predeform);
     labeling.data_normals = triangle_normals(res.predeform.points, res.boundary_triangles);
   }
-  LabelingResult lab = graph_cut_labeling(s, labeling);
+  CutAndRepair cr = cut_and_repair(s, labeling, o.repair);
+  LabelingResult& lab = cr.cut;
+  RepairResult rep = std::move(cr.repair);
   RepairOptions repair = o.repair;
   repair.energy = labeling;
-  RepairResult rep = repair_labeling(s, lab.labels, repair);
+  repair.energy.compactness = lab.compactness;
   if (rep.valid()) rep = relabel_backward_charts(s, std::move(rep), repair);  // as construct does
   res.seconds.label_and_repair = clock.seconds();
 

@@ -51,6 +51,7 @@ LabelingResult graph_cut_labeling(const core::TriMesh& surface, const LabelingOp
   const SurfaceGraph g = detail::build_surface_graph(surface);
   const Energy en = detail::make_energy(g, opt);
   LabelingResult r;
+  r.compactness = opt.compactness;
   // Start from the best axis per triangle.
   r.labels.resize(static_cast<std::size_t>(g.num_triangles));
   for (int t = 0; t < g.num_triangles; ++t) {

@@ -51,6 +51,7 @@ struct LabelingResult {
   double energy = 0.0;      //!< final energy (fidelity + compactness terms, area-normalized)
   int cycles = 0;           //!< α-expansion cycles run
   int moves = 0;            //!< expansion moves that lowered the energy
+  double compactness = 0.0; //!< the compactness of the cut (LabelingOptions::compactness)
 };
 
 //! Label the triangles of a closed, edge-manifold surface by α-expansion graph cut: data term

@@ -19,6 +19,9 @@
 
 namespace polycube::construct {
 
+//! cut_and_repair(): the compactness factor of the looser cut.
+inline constexpr double kLooserCut = 0.8;
+
 //! Options of repair_labeling().
 struct RepairOptions {
   //! Energy used to rank the moves that lower the number of defects (same meaning as in
@@ -45,6 +48,7 @@ struct RepairResult {
   [[nodiscard]] bool valid() const { return check.valid(); }
 };
 
+
 //! Repair a labeling towards validity.
 //! \param surface  closed, edge-manifold surface (#V, #T), outward orientation
 //! \param labels   #T initial labels in {0..5}
@@ -68,5 +72,23 @@ std::vector<int> backward_charts(const core::TriMesh& surface, const ChartLayout
 //! read); repeated while the number of backward charts falls. `rep` comes back unchanged when
 //! it has no backward chart or the relabelled labeling cannot be repaired to validity.
 RepairResult relabel_backward_charts(const core::TriMesh& surface, RepairResult rep, const RepairOptions& options);
+
+//! A graph cut and its repair (cut_and_repair()).
+struct CutAndRepair {
+  LabelingResult cut;   //!< the graph cut repaired; cut.compactness says at which compactness
+  RepairResult repair;  //!< its repair (options.energy: the cut's options)
+};
+
+//! graph_cut_labeling() at `labeling`, then repair_labeling(). When the repair had to move
+//! labels to make the cut valid and the cut at kLooserCut times the compactness is valid as it
+//! is, that cut is kept instead. The repair's moves are ranked by the defects they remove and
+//! by the polycube estimate, not by the creases: a chart with too few neighbours is relabeled
+//! as a whole, and where it meets its new chart at a sharp crease, that crease ends up inside
+//! one polycube face, where no hex edge follows it and the hex mesh cuts across it. A slightly
+//! less compact cut keeps its chart boundaries on the creases, as the graph cut does everywhere
+//! (its edge weights vanish across sharp edges). A looser cut that still needs moves is not
+//! better, and a cut the repair cannot make valid stays a failure (the attempts at other
+//! compactness values are the fallbacks there).
+CutAndRepair cut_and_repair(const core::TriMesh& surface, const LabelingOptions& labeling, RepairOptions repair);
 
 }  // namespace polycube::construct

@@ -183,6 +183,8 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
     const construct::ConstructResult c = construct_from_input(in, input, o.construct);
     r.tets = c.map.num_tets();
     r.construct_attempt = c.attempt.name();
+    if (c.cut_compactness != c.attempt.compactness)
+      r.construct_attempt += fmt::format(", cut at {:.3g} (valid without repair)", c.cut_compactness);
     r.construct_attempts = c.attempts;
     r.decimated_triangles = c.decimation.triangles_after;
     r.coarse_levels = c.coarse_refinement.levels;

@@ -3,6 +3,7 @@
 #include "construct/coarse_surface.h"
 #include "construct/fine_surface.h"
 #include "construct/construct.h"
+#include "construct/label_surface.h"
 #include "construct/labeling.h"
 #include "construct/labeling_check.h"
 #include "construct/labeling_repair.h"
@@ -674,6 +675,38 @@ TEST(Models, Fandisk) { run_model(kData / "surface/fandisk.obj"); }
 TEST(Models, TetB0) { run_model(kData / "tet/B0.mesh"); }
 TEST(Models, TetSphere) { run_model(kData / "tet/sphere.mesh"); }
 TEST(Models, TetCup) { run_model(kData / "tet/cup.mesh"); }
+
+// A cut valid as it is stays: the looser one is not even looked at.
+TEST(Pipeline, CutAndRepairKeepsAValidCut) {
+  const core::TriMesh box = test::make_box(1.0, 2.0, 1.5, 3);
+  const construct::CutAndRepair cr = construct::cut_and_repair(box, {}, {});
+  EXPECT_EQ(cr.cut.compactness, construct::LabelingOptions{}.compactness);
+  EXPECT_EQ(cr.cut.labels, construct::graph_cut_labeling(box, {}).labels);
+  EXPECT_EQ(cr.repair.moves, 0);
+  EXPECT_EQ(cr.repair.labels, cr.cut.labels);
+}
+
+// fandisk's compact cut leaves a chart with too few neighbours (a lip's underside, with two);
+// the repair relabels all of it into the chart beside it, across a sharp crease, which the hex
+// mesh then cuts across. The cut a little less compact is valid without a move: it is the one
+// kept, and it is closer to the normals than the repaired compact cut.
+TEST(Models, FandiskLabelingIsTheLooserCutValidWithoutRepair) {
+  const construct::LabelSurfaceResult r = construct::label_surface(io::read_surface(kData / "surface/fandisk.obj"));
+  const core::TriMesh& s = r.boundary.surface;
+  ASSERT_TRUE(r.valid());
+  EXPECT_EQ(r.initial_defects, 0);
+  EXPECT_EQ(r.repair_moves, 0);
+  const construct::CutAndRepair cr = construct::cut_and_repair(s, {}, {});
+  EXPECT_EQ(cr.cut.compactness, construct::kLooserCut * construct::LabelingOptions{}.compactness);
+  EXPECT_EQ(cr.cut.labels, r.labels);
+
+  const construct::LabelingResult compact = construct::graph_cut_labeling(s, {});
+  EXPECT_FALSE(construct::check_labeling(s, compact.labels).valid());
+  const construct::RepairResult repaired = construct::repair_labeling(s, compact.labels);
+  ASSERT_TRUE(repaired.valid());
+  EXPECT_GT(repaired.moves, 0);
+  EXPECT_LT(r.fidelity, construct::labeling_fidelity(s, repaired.labels));
+}
 
 }  // namespace
 }  // namespace polycube
