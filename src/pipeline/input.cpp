@@ -41,6 +41,7 @@ ConstructInput read_construct_input(const std::filesystem::path& path, const rep
     }
     const repair::RepairReport repaired = repair::repair_surface(*in.surface, repairs);
     in.repairs = repaired.lines();
+    in.wrapped = repaired.wrapped;
     for (const std::string& line : in.repairs) core::logger().warn("{}: {}", name, line);
     construct::check_closed_surface(*in.surface);
   } catch (const core::InputError& e) {
@@ -60,6 +61,14 @@ construct::ConstructResult construct_from_input(const ConstructInput& input,
     return construct::construct_polycube(*input.surface, options);
   } catch (const core::InputError& e) {
     throw core::InputError(path.string(), 0, e.what());
+  } catch (const construct::NotCertified& e) {
+    // Where every attempt left a few tets folded, the cause is often a detail thinner than the
+    // tets (a slit, a narrow gap) that no chart layout opens; the alpha wrap closes it.
+    if (!input.surface || input.wrapped) throw;
+    throw construct::NotCertified(std::string(e.what()) +
+                                      "; a surface with slits or gaps thinner than its tets may construct after "
+                                      "--repair wrap (which closes them; the mesh then fits the wrap)",
+                                  e.map(), e.boundary(), e.labels());
   }
 }
 

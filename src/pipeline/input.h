@@ -23,6 +23,7 @@ struct ConstructInput {
   core::TriMesh target;
   //! What the default repairs changed in a surface input (repair/repair.h), a line per kind.
   std::vector<std::string> repairs;
+  bool wrapped = false;  //!< the surface is the input's alpha wrap (`--repair wrap`)
   //! The last hex mesh's distance to `target`, kept with its points and hexes: the optimize
   //! stage's checks and the final report measure the meshes the optimizer and the padding have
   //! measured already. A cache: the input itself does not change.

@@ -300,6 +300,25 @@ TEST(ConstructCli, PastTheTimeLimitTheBestAttemptSoFarIsKept) {
   EXPECT_EQ(r.err.find("construct attempt 2/"), std::string::npos) << r.err;
 }
 
+// A surface whose every attempt fails certification: the message names the alpha wrap as a
+// remedy (it closes slits thinner than the tets, where homer's attempts stay folded), unless the
+// surface is the wrap already. The first attempt's certificate is refused and the budget lets
+// no other start.
+TEST(ConstructCli, AnUncertifiedSurfaceNamesTheWrapAsTheRemedyUnlessItIsTheWrap) {
+  const fs::path dir = temp_dir("wrap_remedy");
+  write_surface(dir / "box.obj", test::make_box(1.0, 2.0, 1.5, 2));
+  const std::string refused = "--inject-failure uncertified-attempt-1 --time-limit 1e-6";
+  const std::string remedy = "may construct after --repair wrap";
+  const CliResult plain = construct(dir / "box.obj", dir / "out", refused);
+  EXPECT_EQ(plain.exit_code, 3) << plain.err;
+  EXPECT_NE(plain.err.find("polycube map not certified"), std::string::npos) << plain.err;
+  EXPECT_NE(plain.err.find(remedy), std::string::npos) << plain.err;
+  const CliResult wrapped = construct(dir / "box.obj", dir / "out_wrapped", refused + " --repair wrap --wrap-alpha 0.05");
+  EXPECT_EQ(wrapped.exit_code, 3) << wrapped.err;
+  EXPECT_NE(wrapped.err.find("polycube map not certified"), std::string::npos) << wrapped.err;
+  EXPECT_EQ(wrapped.err.find(remedy), std::string::npos) << wrapped.err;
+}
+
 //! Options (lines starting with "  -") in a --help text.
 std::vector<std::string> listed_options(const std::string& help) {
   std::vector<std::string> options;
