@@ -134,7 +134,7 @@ class Predeformations {
 //! estimate of the result (what the attempts are ordered by).
 struct AttemptLabeling {
   RepairResult repair;
-  double cut_compactness = 0;  //!< the compactness of the graph cut repaired (cut_for_repair)
+  double cut_compactness = 0;  //!< the compactness of the graph cut repaired (cut_and_repair)
   PolycubeEstimate estimate;
   bool valid = false;
 };

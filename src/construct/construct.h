@@ -147,7 +147,7 @@ struct ConstructResult {
   double fidelity = 0;              //!< area-weighted mean of 1 − n·axis (model normals)
   int repair_moves = 0;             //!< moves made by the labeling repair of the kept attempt
   double cut_compactness = 0;       //!< compactness of the kept attempt's graph cut: below the attempt's when
-                                    //!< the looser cut was valid without repair (cut_for_repair)
+                                    //!< the looser cut was valid without repair (cut_and_repair)
   Attempt attempt;                  //!< the attempt whose map this is
   int attempts = 0;                 //!< attempts deformed
   std::string tried;                //!< why the other attempts failed ("; "-separated; empty: none did)
