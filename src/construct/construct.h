@@ -120,8 +120,8 @@ struct ConstructTimes {
   double decimate = 0;        //!< decimation of a surface finer than needed (fine_surface.h)
   double tetrahedralize = 0;  //!< TetGen + boundary refinement (or input preparation)
   double predeform = 0;       //!< normal-driven pre-deformation
-  double label = 0;           //!< graph-cut labeling
-  double repair = 0;          //!< labeling repair
+  double label = 0;           //!< graph cut, its repair to validity and the estimate (cut_and_repair)
+  double repair = 0;          //!< local moves on the deformed attempt's labeling (unfold, straighten)
   double deform = 0;          //!< chart constraints + linear (ARAP) step
   double untangle = 0;        //!< elliptic untangling and distortion reduction
   double certify = 0;         //!< exact certification + distortion measures

@@ -25,13 +25,9 @@ void label_prepared(LabelSurfaceResult& res, const LabelSurfaceOptions& o) {
     res.predeform = predeform(res.mesh, res.boundary_triangles, o.predeform);
     labeling.data_normals = triangle_normals(res.predeform.points, res.boundary_triangles);
   }
-  CutAndRepair cr = cut_and_repair(s, labeling, o.repair);
+  CutAndRepair cr = cut_and_repair(s, labeling, o.repair);  // as construct does
   LabelingResult& lab = cr.cut;
-  RepairResult rep = std::move(cr.repair);
-  RepairOptions repair = o.repair;
-  repair.energy = labeling;
-  repair.energy.compactness = lab.compactness;
-  if (rep.valid()) rep = relabel_backward_charts(s, std::move(rep), repair);  // as construct does
+  RepairResult& rep = cr.repair;
   res.seconds.label_and_repair = clock.seconds();
 
   res.fidelity = labeling_fidelity(s, rep.labels);

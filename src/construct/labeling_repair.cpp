@@ -298,17 +298,20 @@ CutAndRepair cut_and_repair(const core::TriMesh& surface, const LabelingOptions&
   out.cut = graph_cut_labeling(surface, labeling);
   repair.energy = labeling;
   out.repair = repair_labeling(surface, out.cut.labels, repair);
-  if (!out.repair.valid() || out.repair.moves == 0 || !(labeling.compactness > 0.0)) return out;
-  LabelingOptions looser = labeling;
-  looser.compactness = kLooserCut * labeling.compactness;
-  LabelingResult cut = graph_cut_labeling(surface, looser);
-  if (!check_labeling(surface, cut.labels).valid()) return out;
-  core::logger().info("labeling: the cut at compactness {:.3g} is valid as it is; the one at {:.3g} needed {} repair "
-                      "move(s)",
-                      looser.compactness, labeling.compactness, out.repair.moves);
-  repair.energy = looser;
-  out.repair = repair_labeling(surface, cut.labels, repair);
-  out.cut = std::move(cut);
+  if (out.repair.valid() && out.repair.moves > 0 && labeling.compactness > 0.0) {
+    LabelingOptions looser = labeling;
+    looser.compactness = kLooserCut * labeling.compactness;
+    LabelingResult cut = graph_cut_labeling(surface, looser);
+    if (check_labeling(surface, cut.labels).valid()) {
+      core::logger().info(
+          "labeling: the cut at compactness {:.3g} is valid as it is; the one at {:.3g} needed {} repair move(s)",
+          looser.compactness, labeling.compactness, out.repair.moves);
+      repair.energy = looser;
+      out.repair = repair_labeling(surface, cut.labels, repair);
+      out.cut = std::move(cut);
+    }
+  }
+  if (out.repair.valid()) out.repair = relabel_backward_charts(surface, std::move(out.repair), repair);
   return out;
 }
 

@@ -76,10 +76,11 @@ RepairResult relabel_backward_charts(const core::TriMesh& surface, RepairResult 
 //! A graph cut and its repair (cut_and_repair()).
 struct CutAndRepair {
   LabelingResult cut;   //!< the graph cut repaired; cut.compactness says at which compactness
-  RepairResult repair;  //!< its repair (options.energy: the cut's options)
+  RepairResult repair;  //!< its repair, backward charts relabelled (options.energy: the cut's options)
 };
 
-//! graph_cut_labeling() at `labeling`, then repair_labeling(). When the repair had to move
+//! graph_cut_labeling() at `labeling`, then repair_labeling() and relabel_backward_charts()
+//! (what `construct` and `label` both run). When the repair had to move
 //! labels to make the cut valid and the cut at kLooserCut times the compactness is valid as it
 //! is, that cut is kept instead. The repair's moves are ranked by the defects they remove and
 //! by the polycube estimate, not by the creases: a chart with too few neighbours is relabeled
