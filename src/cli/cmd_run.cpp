@@ -33,6 +33,7 @@ struct RunCliOptions {
   std::string output_dir;
   bool no_simplify = false;
   bool no_optimize = false;
+  bool no_wrap_fallback = false;
   std::vector<double> chamber;
   pipeline::RunOptions run;
 };
@@ -84,6 +85,9 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
       {"isometric_max", known(r.isometric_max)},
       {"construct_attempt", r.construct_attempt},
       {"construct_attempts", known(r.construct_attempts)},
+      {"construct_fallback", r.construct_fallback.empty()
+                                 ? nlohmann::json(nullptr)
+                                 : nlohmann::json({{"taken", r.construct_fallback}, {"why", r.construct_fallback_why}})},
       {"surface_decimated",
        r.decimated_triangles > 0
            ? nlohmann::json({{"triangles_before", r.input_triangles}, {"triangles_after", r.decimated_triangles}})
@@ -137,7 +141,8 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
       {"quads", known(r.quads)},
       {"gridded", {{"inverted", known(r.inverted_gridded)}, {"msj", known_sj(r.msj_gridded)}, {"asj", known_sj(r.asj_gridded)}}},
       {"final", {{"inverted", known(r.inverted)}, {"msj", known_sj(r.msj)}, {"asj", known_sj(r.asj)}, {"domains", known(r.final_domains)},
-                 {"hausdorff_relative", known(r.hausdorff_relative)}}},
+                 {"hausdorff_relative", known(r.hausdorff_relative)},
+                 {"hausdorff_unwrapped_relative", known(r.hausdorff_unwrapped_relative)}}},
       {"total_seconds", r.total_seconds},
       {"peak_memory_mib", known(r.peak_memory_mib)},
       {"files", relative_to(r.files, o.output_dir)}});
@@ -182,6 +187,8 @@ std::string summary_table(const pipeline::RunResult& r) {
       what = fmt::format("{} tets, {} charts, {} corners, isometric avg {} max {}; {} ({} attempt(s) run)", r.tets,
                          r.charts, r.corners, figure(r.isometric_average), figure(r.isometric_max),
                          r.construct_attempt, r.construct_attempts) +
+             (r.construct_fallback.empty() ? "" : "; of the surface's " + r.construct_fallback +
+                                                      ": the surface as read could not be certified") +
              (r.decimated_triangles > 0 ? fmt::format("; the surface decimated from {} to {} triangles",
                                                       r.input_triangles, r.decimated_triangles) : "") +
              (r.coarse_levels > 0 ? fmt::format("; the coarse surface split to {} triangles, {} sharp tips made corners",
@@ -203,9 +210,13 @@ std::string summary_table(const pipeline::RunResult& r) {
       what = r.padding_added < 0 ? r.padding
                                  : fmt::format("{}: {}{}", r.padding, padding_summary(r), plan_summary(r));
     else if (s.name == "quality")
-      what = fmt::format("mSJ {} aSJ {}, {} inverted, #D {}, Hausdorff {} of the bbox diagonal", figure(r.msj),
+      what = fmt::format("mSJ {} aSJ {}, {} inverted, #D {}, Hausdorff {} of the bbox diagonal{}", figure(r.msj),
                          figure(r.asj), count(r.inverted), count(r.final_domains),
-                         figure(r.hausdorff_relative, "{:.5f}"));
+                         figure(r.hausdorff_relative, "{:.5f}"),
+                         r.hausdorff_unwrapped_relative < 0
+                             ? ""
+                             : fmt::format(" from the wrap, {} from the surface as read",
+                                           figure(r.hausdorff_unwrapped_relative, "{:.5f}")));
     else
       what = "ok";
     t += fmt::format("| {} | {:.2f} | {} |\n", s.name, s.seconds, what);
@@ -218,6 +229,7 @@ void run_run(RunCliOptions o) {
   namespace fs = std::filesystem;
   o.run.simplify = !o.no_simplify;
   o.run.optimize = !o.no_optimize;
+  o.run.wrap_fallback = !o.no_wrap_fallback;
   if (!o.chamber.empty()) {
     if (!o.run.fabricate) throw core::InputError("--chamber needs --fabricate");
     o.run.fabricate_options.chamber = {o.chamber[0], o.chamber[1], o.chamber[2]};
@@ -262,7 +274,7 @@ void register_run(CLI::App& app) {
       "run", "The whole chain on a surface or tet mesh: construct -> simplify -> hexmesh (+ quad mesh) -> optimize "
              "(-> pad), "
              "with every intermediate result, report.json and a summary table. A stage that cannot reach a valid "
-             "result tries its fallbacks first (other construction attempts, fewer alignments, a stiffer boundary "
+             "result tries its fallbacks first (other construction attempts, the surface's alpha wrap, fewer alignments, a stiffer boundary "
              "barrier, padding, other griddings; a mesh too far from the input is gridded twice as fine), and the "
              "summary says which one gave the result. A failing stage stops the chain: "
              "exit code 2 when the input file is at fault, 3 when the stage could not reach a valid result (the "
@@ -300,6 +312,10 @@ void register_run(CLI::App& app) {
                     "When the optimized mesh stays farther from the input than the Hausdorff bound, first grid the map "
                     "with twice the cells in the slabs of the polycube around the points it misses (fewer hexes than "
                     "twice as fine everywhere, which follows when that is not enough; the mSJ may be lower)");
+  sub->add_flag("--no-wrap-fallback", opts->no_wrap_fallback,
+                "When no construction attempt can be certified, fail instead of constructing the surface's alpha "
+                "wrap (which closes slits and gaps thinner than the tets; the mesh then fits the wrap, and the "
+                "report also gives its distance to the surface as read)");
   sub->add_flag("--fabricate", opts->run.fabricate,
                 "Also cut the input solid into parts along the simplified map (thesis ch. 6): "
                 "parts/ with part_NN.stl, parts.3mf, exploded.ply/.vtk, parts.json");
@@ -332,7 +348,7 @@ void register_run(CLI::App& app) {
                              "simplify-step-2", "simplify-step-3", "optimize-step-1", "optimize-step-2",
                              "optimize-step-3", "optimize-step-4", "optimize-step-5", "optimize-crossing-1",
                              "optimize-crossing-2", "optimize-distance-1",
-                             "optimize-distance-2", "optimize-distance-3", "pad"}))
+                             "optimize-distance-2", "optimize-distance-3", "pad", "construct-unwrapped"}))
       ->group("");
   opts->command = sub;
   std::vector<CLI::Option*> expert = add_repair_options(*sub, opts->run.repair);

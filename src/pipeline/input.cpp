@@ -8,6 +8,8 @@
 #include "io/mesh_io.h"
 #include "repair/repair.h"
 
+#include <fmt/format.h>
+
 namespace polycube::pipeline {
 
 ConstructInput read_construct_input(const std::filesystem::path& path, const repair::RepairOptions& repairs) {
@@ -53,14 +55,26 @@ ConstructInput read_construct_input(const std::filesystem::path& path, const rep
   return in;
 }
 
-construct::ConstructResult construct_from_input(const ConstructInput& input,
-                                                const std::filesystem::path& path,
-                                                const construct::ConstructOptions& options) {
+namespace {
+
+//! The construction, its InputErrors naming the file.
+construct::ConstructResult construct_named(const ConstructInput& input, const std::filesystem::path& path,
+                                           const construct::ConstructOptions& options) {
   try {
     if (input.tets) return construct::construct_polycube(*input.tets, options);
     return construct::construct_polycube(*input.surface, options);
   } catch (const core::InputError& e) {
     throw core::InputError(path.string(), 0, e.what());
+  }
+}
+
+}  // namespace
+
+construct::ConstructResult construct_from_input(const ConstructInput& input,
+                                                const std::filesystem::path& path,
+                                                const construct::ConstructOptions& options) {
+  try {
+    return construct_named(input, path, options);
   } catch (const construct::NotCertified& e) {
     // Where every attempt left a few tets folded, the cause is often a detail thinner than the
     // tets (a slit, a narrow gap) that no chart layout opens; the alpha wrap closes it.
@@ -69,6 +83,49 @@ construct::ConstructResult construct_from_input(const ConstructInput& input,
                                       "; a surface with slits or gaps thinner than its tets may construct after "
                                       "--repair wrap (which closes them; the mesh then fits the wrap)",
                                   e.map(), e.boundary(), e.labels());
+  }
+}
+
+construct::ConstructResult construct_with_wrap_fallback(ConstructInput& input, const std::filesystem::path& path,
+                                                        const construct::ConstructOptions& options,
+                                                        const repair::RepairOptions& wrap_settings,
+                                                        bool wrap_fallback, bool inject_unwrapped_failure,
+                                                        WrapFallback& fallback) {
+  fallback = {};
+  const bool may_wrap = wrap_fallback && input.surface && !input.wrapped;
+  std::string first_failure;
+  const bool injected = inject_unwrapped_failure && input.surface && !input.wrapped;
+  if (!may_wrap && !injected) return construct_from_input(input, path, options);
+  try {
+    if (injected) throw construct::NotCertified("injected failure (--inject-failure construct-unwrapped)", {}, {}, {});
+    return construct_named(input, path, options);
+  } catch (const construct::NotCertified& e) {
+    if (!may_wrap) throw;
+    first_failure = e.what();
+  }
+  core::logger().warn("construct: no attempt could be certified ({}); constructing the surface's alpha wrap instead "
+                      "(it closes slits and gaps thinner than the tets; the mesh then fits the wrap)",
+                      first_failure);
+  core::TriMesh wrapped = *input.surface;
+  repair::RepairOptions wrap;
+  wrap.wrap = true;
+  wrap.wrap_alpha = wrap_settings.wrap_alpha;
+  wrap.wrap_offset = wrap_settings.wrap_offset;
+  const repair::RepairReport report = repair::repair_surface(wrapped, wrap);
+  construct::check_closed_surface(wrapped);
+  input.unwrapped = std::move(*input.surface);
+  input.surface = wrapped;
+  input.target = std::move(wrapped);
+  input.wrapped = true;
+  input.distances = {};
+  fallback.taken = fmt::format("alpha wrap ({} triangles; ball {:.3g}, offset {:.3g} model units)",
+                               report.wrap_triangles, report.wrap_alpha, report.wrap_offset);
+  fallback.why = first_failure;
+  try {
+    return construct_named(input, path, options);
+  } catch (const construct::NotCertified& e) {
+    throw construct::NotCertified(fmt::format("{}; its alpha wrap: {}", first_failure, e.what()), e.map(),
+                                  e.boundary(), e.labels());
   }
 }
 

@@ -23,7 +23,10 @@ struct ConstructInput {
   core::TriMesh target;
   //! What the default repairs changed in a surface input (repair/repair.h), a line per kind.
   std::vector<std::string> repairs;
-  bool wrapped = false;  //!< the surface is the input's alpha wrap (`--repair wrap`)
+  bool wrapped = false;  //!< the surface is the input's alpha wrap (`--repair wrap`, or the wrap fallback)
+  //! Set when construct_with_wrap_fallback() replaced the surface and `target` by the alpha
+  //! wrap: the surface as read (repaired), for the final distance to what the user gave.
+  std::optional<core::TriMesh> unwrapped;
   //! The last hex mesh's distance to `target`, kept with its points and hexes: the optimize
   //! stage's checks and the final report measure the meshes the optimizer and the padding have
   //! measured already. A cache: the input itself does not change.
@@ -40,5 +43,27 @@ ConstructInput read_construct_input(const std::filesystem::path& path, const rep
 construct::ConstructResult construct_from_input(const ConstructInput& input,
                                                 const std::filesystem::path& path,
                                                 const construct::ConstructOptions& options);
+
+//! What construct_with_wrap_fallback() did.
+struct WrapFallback {
+  std::string taken;  //!< "" (the surface as read certified), or "alpha wrap (...)"
+  std::string why;    //!< why the surface as read did not construct
+};
+
+//! construct_from_input(), and when no attempt can be certified on a surface that is not
+//! wrapped yet, the same construction on the surface's alpha wrap (repair/repair.h, with the
+//! ball and offset of `wrap_settings`: run's --wrap-alpha and --wrap-offset). Where every attempt
+//! leaves a few tets folded, the cause is often a detail thinner than the tets (a slit, a narrow
+//! gap) that no chart layout opens, and the wrap closes it. `input` then holds the wrap as its
+//! surface and target (the chain's mesh fits the wrap; `unwrapped` keeps the surface as read),
+//! and `fallback` says what was done and why. The wrap's construction gets the same budget
+//! (options.time_limit) again. `inject_unwrapped_failure` (tests only): the first construction
+//! counts as not certified without running.
+//! \throw as construct_from_input: the wrap's failure, naming the first one
+construct::ConstructResult construct_with_wrap_fallback(ConstructInput& input, const std::filesystem::path& path,
+                                                        const construct::ConstructOptions& options,
+                                                        const repair::RepairOptions& wrap_settings,
+                                                        bool wrap_fallback, bool inject_unwrapped_failure,
+                                                        WrapFallback& fallback);
 
 }  // namespace polycube::pipeline

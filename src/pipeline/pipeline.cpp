@@ -12,6 +12,7 @@
 #include "pipeline/parts_output.h"
 #include "pipeline/stage_steps.h"
 #include "quality/report.h"
+#include "quality/surface_distance.h"
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
@@ -149,7 +150,7 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   const core::Stopwatch clock;
   RunResult r;
   if (o.target_hexes <= 0) throw core::InputError("the target number of hexes must be positive");
-  const bool injects_step = injected_steps(o.inject_failure, "simplify-step-") > 0 ||
+  const bool injects_step = o.inject_failure == "construct-unwrapped" || injected_steps(o.inject_failure, "simplify-step-") > 0 ||
                             injected_steps(o.inject_failure, "optimize-step-") > 0 ||
                             injected_steps(o.inject_failure, "optimize-crossing-") > 0 ||
                             injected_steps(o.inject_failure, "optimize-distance-") > 0;
@@ -180,7 +181,11 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   // 2. construction
   core::PolycubeMap map;
   run.stage("construct", [&] {
-    const construct::ConstructResult c = construct_from_input(in, input, o.construct);
+    WrapFallback wrap;
+    const construct::ConstructResult c = construct_with_wrap_fallback(
+        in, input, o.construct, o.repair, o.wrap_fallback, o.inject_failure == "construct-unwrapped", wrap);
+    r.construct_fallback = wrap.taken;
+    r.construct_fallback_why = wrap.why;
     r.tets = c.map.num_tets();
     r.construct_attempt = c.attempt.name();
     if (c.cut_compactness != c.attempt.compactness)
@@ -326,6 +331,7 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
     r.inverted = h.sj.inverted;
     if (h.domains) r.final_domains = h.domains->domains;
     r.hausdorff_relative = in.distances.measure(hex, in.target).relative;
+    if (in.unwrapped) r.hausdorff_unwrapped_relative = quality::hausdorff_distance(hex, *in.unwrapped).relative;
     write_vtk(out_dir / "hex_quality.vtk", core::to_mesh_data(hex), h.fields());
     wrote(out_dir / "hex_quality.vtk");
     if (r.inverted > 0)

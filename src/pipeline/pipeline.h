@@ -43,6 +43,10 @@ namespace polycube::pipeline {
 struct RunOptions {
   repair::RepairOptions repair;  //!< the repairs asked for beyond the default ones (repair/repair.h)
   construct::ConstructOptions construct;
+  //! When no construction attempt on a surface can be certified, construct its alpha wrap
+  //! (pipeline/input.h: construct_with_wrap_fallback); the mesh then fits the wrap, and the
+  //! final report also gives its distance to the surface as read.
+  bool wrap_fallback = true;
   bool simplify = true;                    //!< run the simplification (corner alignment)
   simplify::SimplifyOptions simplify_options;
   int target_hexes = 20000;                //!< about this many hexes (> 0)
@@ -90,7 +94,8 @@ struct RunOptions {
   //! fallbacks, simplify.h); "optimize-step-N" (N in 1..5): the first N optimized meshes count
   //! as failing the fold-over check (optimize_fallbacks); "optimize-crossing-N": the first N
   //! count as meshes whose boundary crosses itself (the stiffer barrier's retry first);
-  //! "optimize-distance-N": the first N valid meshes count as too far from the input (1: the
+  //! "construct-unwrapped": the construction of the surface as read counts as not certified (the
+  //! wrap fallback); "optimize-distance-N": the first N valid meshes count as too far from the input (1: the
   //! first finer grid of step 5 is kept; 2: it is not closer, so the next one is tried (with
   //! refine_far; without it the first mesh stays); 3 with refine_far: the first mesh stays).
   //! Empty (the default): never.
@@ -124,6 +129,8 @@ struct RunResult {
   double isometric_average = -1, isometric_max = -1;
   std::string construct_attempt;       //!< the construction attempt whose map was kept
   int construct_attempts = -1;         //!< attempts deformed
+  std::string construct_fallback;      //!< "" or what construct fell back to ("alpha wrap (...)")
+  std::string construct_fallback_why;  //!< why: the surface as read could not be certified
   int input_triangles = -1;            //!< triangles of the surface input (-1: a tet mesh)
   int decimated_triangles = 0;         //!< the surface decimated for the construction to this many (0: not)
   int coarse_levels = 0;               //!< times a surface too coarse to label was split into four
@@ -173,7 +180,8 @@ struct RunResult {
   double msj = -2, asj = -2;           //!< final hex mesh
   int inverted = -1;                   //!< final hex mesh
   int final_domains = -1;              //!< #D of the final hex mesh
-  double hausdorff_relative = -1;      //!< final boundary vs the input surface, / its bbox diagonal
+  double hausdorff_relative = -1;      //!< final boundary vs the input surface (the wrap after the wrap fallback), / its bbox diagonal
+  double hausdorff_unwrapped_relative = -1;  //!< after the wrap fallback: final boundary vs the surface as read
   double total_seconds = 0.0;
   double peak_memory_mib = -1;         //!< peak resident memory of the process (getrusage)
 

@@ -408,6 +408,37 @@ TEST(RunCli, ConstructFailureExitsThreeAndWritesNoMap) {
   EXPECT_NE(r.out.find("FAILED"), std::string::npos) << r.out;
 }
 
+// Construct's last fallback (pipeline/input.h): when no attempt on the surface as read can be
+// certified (here: counted so by `--inject-failure construct-unwrapped`), its alpha wrap is
+// constructed, the chain fits the wrap, and the report names the fallback, why it was taken and
+// the final mesh's distance to both surfaces. With --no-wrap-fallback the same failure stops
+// the chain at construct.
+TEST(RunCli, AnUncertifiedSurfaceFallsBackToItsAlphaWrapAndTheReportSaysSo) {
+  const fs::path dir = temp_dir("wrap_fallback");
+  write_surface(dir / "box.obj", test::make_box(1.0, 1.0, 1.0, 2));
+  const std::string coarse_wrap = "--hexes 200 --padding none --wrap-alpha 0.1 --wrap-offset 0.01";
+  const CliResult r = run(dir / "box.obj", dir / "out", coarse_wrap + " --inject-failure construct-unwrapped");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = read_report(dir / "out");
+  ASSERT_TRUE(j["construct_fallback"].is_object()) << j["construct_fallback"];
+  EXPECT_TRUE(j["construct_fallback"]["taken"].get<std::string>().starts_with("alpha wrap (")) << j["construct_fallback"];
+  EXPECT_NE(j["construct_fallback"]["why"].get<std::string>().find("injected failure"), std::string::npos);
+  EXPECT_NE(r.out.find("alpha wrap"), std::string::npos) << r.out;
+  expect_valid_map(dir / "out" / "construct", j);
+  EXPECT_EQ(j["final"]["inverted"], 0);
+  // The wrap lies about its offset (1 % of the diagonal) outside the box: the mesh that fits it
+  // is farther from the box than from the wrap.
+  const double to_wrap = j["final"]["hausdorff_relative"].get<double>();
+  const double to_box = j["final"]["hausdorff_unwrapped_relative"].get<double>();
+  EXPECT_GT(to_box, to_wrap);
+  EXPECT_GT(to_box, 0.005);
+
+  const CliResult off = run(dir / "box.obj", dir / "off", coarse_wrap + " --no-wrap-fallback --inject-failure construct-unwrapped");
+  expect_stopped_at(off, dir / "off", "construct", 3, {"input"});
+  EXPECT_NE(off.err.find("injected failure"), std::string::npos) << off.err;
+  EXPECT_TRUE(read_report(dir / "off")["construct_fallback"].is_null());
+}
+
 // The same kind of solid with the defaults: its four triangles are split until they can be
 // labeled, and its tips, sharper than a cube's corners, are held to be polycube corners (left
 // inside a chart, a tip's tets stayed inverted: issue 24).
