@@ -67,7 +67,10 @@ for rep in sorted(glob.glob(os.path.join(out, "*", "report.json"))):
         f(fin["msj"], ".3f"), f(fin["asj"], ".3f"), f(fin["hausdorff_relative"], ".4f"),
         f(st.get("construct"), ".1f"), f(st.get("simplify"), ".1f"), f(st.get("hexmesh"), ".1f"),
         f(st.get("optimize"), ".1f"), f(j["total_seconds"], ".1f"), f(j["peak_memory_mib"], ".0f"),
-        j.get("construct_attempt") or "-", j.get("simplify_step") or "-", j.get("optimize_fallback") or "-", res))
+        (j.get("construct_attempt") or "-") + ("" if not j.get("construct_fallback") else
+            ", of the " + j["construct_fallback"]["taken"].split(" (")[0] +
+            " (Hausdorff from the input {:.4f})".format(fin.get("hausdorff_unwrapped_relative") or -1)),
+        j.get("simplify_step") or "-", j.get("optimize_fallback") or "-", res))
 PY
 )
 echo "$table"
