@@ -7,6 +7,7 @@
 #include "core/topology.h"
 #include "io/mesh_io.h"
 #include "repair/repair.h"
+#include "repair/thin_gaps.h"
 
 #include <fmt/format.h>
 
@@ -86,31 +87,16 @@ construct::ConstructResult construct_from_input(const ConstructInput& input,
   }
 }
 
-construct::ConstructResult construct_with_wrap_fallback(ConstructInput& input, const std::filesystem::path& path,
-                                                        const construct::ConstructOptions& options,
-                                                        const repair::RepairOptions& wrap_settings,
-                                                        bool wrap_fallback, bool inject_unwrapped_failure,
-                                                        WrapFallback& fallback) {
-  fallback = {};
-  const bool may_wrap = wrap_fallback && input.surface && !input.wrapped;
-  std::string first_failure;
-  const bool injected = inject_unwrapped_failure && input.surface && !input.wrapped;
-  if (!may_wrap && !injected) return construct_from_input(input, path, options);
-  try {
-    if (injected) throw construct::NotCertified("injected failure (--inject-failure construct-unwrapped)", {}, {}, {});
-    return construct_named(input, path, options);
-  } catch (const construct::NotCertified& e) {
-    if (!may_wrap) throw;
-    first_failure = e.what();
-  }
-  core::logger().warn("construct: no attempt could be certified ({}); constructing the surface's alpha wrap instead "
-                      "(it closes slits and gaps thinner than the tets; the mesh then fits the wrap)",
-                      first_failure);
+namespace {
+
+//! Replace the input's surface and target by the surface's alpha wrap (the surface as read kept
+//! in `unwrapped`); what was done, for the report.
+std::string wrap_input(ConstructInput& input, const repair::RepairOptions& settings) {
   core::TriMesh wrapped = *input.surface;
   repair::RepairOptions wrap;
   wrap.wrap = true;
-  wrap.wrap_alpha = wrap_settings.wrap_alpha;
-  wrap.wrap_offset = wrap_settings.wrap_offset;
+  wrap.wrap_alpha = settings.wrap_alpha;
+  wrap.wrap_offset = settings.wrap_offset;
   const repair::RepairReport report = repair::repair_surface(wrapped, wrap);
   construct::check_closed_surface(wrapped);
   input.unwrapped = std::move(*input.surface);
@@ -118,14 +104,89 @@ construct::ConstructResult construct_with_wrap_fallback(ConstructInput& input, c
   input.target = std::move(wrapped);
   input.wrapped = true;
   input.distances = {};
-  fallback.taken = fmt::format("alpha wrap ({} triangles; ball {:.3g}, offset {:.3g} model units)",
-                               report.wrap_triangles, report.wrap_alpha, report.wrap_offset);
+  return fmt::format("alpha wrap ({} triangles; ball {:.3g}, offset {:.3g} model units)", report.wrap_triangles,
+                     report.wrap_alpha, report.wrap_offset);
+}
+
+//! Undo wrap_input().
+void unwrap_input(ConstructInput& input) {
+  input.surface = std::move(*input.unwrapped);
+  input.unwrapped.reset();
+  input.target = *input.surface;
+  input.wrapped = false;
+  input.distances = {};
+}
+
+//! The gaps the wrap closes (narrower than its ball's diameter).
+repair::ThinGaps gaps_the_wrap_closes(const core::TriMesh& surface, const repair::RepairOptions& settings) {
+  const double diagonal = core::bounding_box(surface.points).diagonal();
+  if (!(diagonal > 0.0) || !(settings.wrap_alpha > 0.0)) return {};
+  return repair::find_thin_gaps(surface, 2.0 * settings.wrap_alpha * diagonal);
+}
+
+}  // namespace
+
+construct::ConstructResult construct_with_wrap_fallback(ConstructInput& input, const std::filesystem::path& path,
+                                                        const construct::ConstructOptions& options,
+                                                        const repair::RepairOptions& wrap_settings,
+                                                        bool wrap_fallback, bool inject_unwrapped_failure,
+                                                        WrapFallback& fallback) {
+  fallback = {};
+  const bool as_read = input.surface && !input.wrapped;
+  const bool may_wrap = wrap_fallback && as_read;
+  const bool injected = inject_unwrapped_failure && as_read;
+  if (!may_wrap && !injected) return construct_from_input(input, path, options);
+
+  // 1. The first attempt on the surface as read, the whole plan unless the surface has gaps the
+  //    wrap closes: then a failing first attempt is followed by the wrap (at the first attempt's
+  //    usual deadline, half the budget), the likelier remedy, and the plan's other attempts only
+  //    come after the wrap failed too.
+  const repair::ThinGaps gaps = may_wrap ? gaps_the_wrap_closes(*input.surface, wrap_settings) : repair::ThinGaps{};
+  const bool wrap_early = gaps.vertices > 0 && options.max_attempts > 1;
+  construct::ConstructOptions first = options;
+  if (wrap_early) {
+    first.max_attempts = 1;
+    if (first.time_limit > 0) first.time_limit = 0.5 * options.time_limit;
+    core::logger().info("construct: {} vertices face the surface across gaps narrower than the wrap's ball (the "
+                        "narrowest {:.3g}, at ({:.3g}, {:.3g}, {:.3g})); if the first attempt fails, the alpha wrap "
+                        "is constructed before the other attempts",
+                        gaps.vertices, gaps.narrowest, gaps.sites[0].x(), gaps.sites[0].y(), gaps.sites[0].z());
+  }
+  std::string first_failure;
+  try {
+    if (injected) throw construct::NotCertified("injected failure (--inject-failure construct-unwrapped)", {}, {}, {});
+    return construct_named(input, path, first);
+  } catch (const construct::NotCertified& e) {
+    if (!may_wrap) throw;
+    first_failure = e.what();
+  }
+
+  // 2. The alpha wrap, with the whole plan and budget.
+  core::logger().warn("construct: {} could not be certified ({}); constructing the surface's alpha wrap instead (it "
+                      "closes slits and gaps thinner than the tets; the mesh then fits the wrap)",
+                      wrap_early ? "the first attempt" : "no attempt", first_failure);
+  fallback.taken = wrap_input(input, wrap_settings);
   fallback.why = first_failure;
+  std::string wrap_failure;
   try {
     return construct_named(input, path, options);
   } catch (const construct::NotCertified& e) {
-    throw construct::NotCertified(fmt::format("{}; its alpha wrap: {}", first_failure, e.what()), e.map(),
-                                  e.boundary(), e.labels());
+    if (!wrap_early) throw construct::NotCertified(fmt::format("{}; its alpha wrap: {}", first_failure, e.what()),
+                                                   e.map(), e.boundary(), e.labels());
+    wrap_failure = e.what();
+  }
+
+  // 3. The whole plan on the surface as read (its first attempt again).
+  core::logger().warn("construct: the alpha wrap could not be certified either ({}); the planned attempts on the "
+                      "surface as read",
+                      wrap_failure);
+  unwrap_input(input);
+  fallback = {};
+  try {
+    return construct_named(input, path, options);
+  } catch (const construct::NotCertified& e) {
+    throw construct::NotCertified(fmt::format("{}; its alpha wrap: {}", e.what(), wrap_failure), e.map(), e.boundary(),
+                                  e.labels());
   }
 }
 
