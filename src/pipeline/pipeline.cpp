@@ -150,7 +150,8 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   const core::Stopwatch clock;
   RunResult r;
   if (o.target_hexes <= 0) throw core::InputError("the target number of hexes must be positive");
-  const bool injects_step = o.inject_failure == "construct-unwrapped" || injected_steps(o.inject_failure, "simplify-step-") > 0 ||
+  const bool injects_step = o.inject_failure == "construct-unwrapped" ||
+                            injected_steps(o.inject_failure, "simplify-step-") > 0 ||
                             injected_steps(o.inject_failure, "optimize-step-") > 0 ||
                             injected_steps(o.inject_failure, "optimize-crossing-") > 0 ||
                             injected_steps(o.inject_failure, "optimize-distance-") > 0;

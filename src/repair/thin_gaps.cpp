@@ -7,8 +7,8 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
-#include <Eigen/Geometry>
 #include <fmt/format.h>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 
@@ -40,7 +40,9 @@ ThinGaps find_thin_gaps(const core::TriMesh& surface, double width) {
   std::vector<std::vector<int>> incident(surface.points.size());
   for (std::size_t i = 0; i < surface.cells.size(); ++i) {
     const core::Tri& t = surface.cells[i];
-    const auto point = [&](int v) { return Kernel::Point_3(surface.points[v].x(), surface.points[v].y(), surface.points[v].z()); };
+    const auto point = [&](int v) {
+      return Kernel::Point_3(surface.points[v].x(), surface.points[v].y(), surface.points[v].z());
+    };
     triangles.emplace_back(point(t[0]), point(t[1]), point(t[2]));
     const core::Vec3 n = triangle_normal(surface, t);  // |n| = twice the area: area-weighted
     for (const int v : t) {

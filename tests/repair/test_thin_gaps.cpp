@@ -17,7 +17,8 @@ namespace {
 // vertices of each facing side see the other side at 0.05 along their normal; the vertices on
 // the sides' rims have normals tilted off the slot.
 core::TriMesh two_boxes(double gap) {
-  return test::join(test::make_box(1.0, 1.0, 1.0, 4), test::make_box(1.0, 1.0, 1.0, 4, core::Vec3(1.0 + gap, 0.0, 0.0)));
+  return test::join(test::make_box(1.0, 1.0, 1.0, 4),
+                    test::make_box(1.0, 1.0, 1.0, 4, core::Vec3(1.0 + gap, 0.0, 0.0)));
 }
 
 TEST(ThinGaps, TwoBoxesAcrossASlotNarrowerThanTheWidthFaceEachOtherAtTheirInnerVertices) {
@@ -25,7 +26,8 @@ TEST(ThinGaps, TwoBoxesAcrossASlotNarrowerThanTheWidthFaceEachOtherAtTheirInnerV
   EXPECT_EQ(g.vertices, 2 * 9);
   EXPECT_NEAR(g.narrowest, 0.05, 1e-12);
   ASSERT_EQ(g.sites.size(), repair::ThinGaps::kMaxSites);
-  for (const core::Vec3& p : g.sites) EXPECT_TRUE(std::abs(p.x() - 1.0) < 1e-12 || std::abs(p.x() - 1.05) < 1e-12) << p.transpose();
+  for (const core::Vec3& p : g.sites)
+    EXPECT_TRUE(std::abs(p.x() - 1.0) < 1e-12 || std::abs(p.x() - 1.05) < 1e-12) << p.transpose();
 }
 
 TEST(ThinGaps, ASlotWiderThanTheWidthIsNotOne) {
