@@ -348,7 +348,7 @@ void register_run(CLI::App& app) {
                              "simplify-step-2", "simplify-step-3", "optimize-step-1", "optimize-step-2",
                              "optimize-step-3", "optimize-step-4", "optimize-step-5", "optimize-crossing-1",
                              "optimize-crossing-2", "optimize-distance-1",
-                             "optimize-distance-2", "optimize-distance-3", "pad", "construct-unwrapped"}))
+                             "optimize-distance-2", "optimize-distance-3", "pad", "construct-unwrapped", "construct-attempt-1"}))
       ->group("");
   opts->command = sub;
   std::vector<CLI::Option*> expert = add_repair_options(*sub, opts->run.repair);

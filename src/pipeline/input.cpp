@@ -155,6 +155,11 @@ construct::ConstructResult construct_with_wrap_fallback(ConstructInput& input, c
   std::string first_failure;
   try {
     if (injected) throw construct::NotCertified("injected failure (--inject-failure construct-unwrapped)", {}, {}, {});
+    // A test's failed first attempt (ConstructOptions::inject_failed_attempts) alone in the plan
+    // would still be certified as the best one: it fails here as a real one does.
+    if (wrap_early && first.inject_failed_attempts > 0)
+      throw construct::NotCertified("injected failure of the first attempt (--inject-failure construct-attempt-1)",
+                                    {}, {}, {});
     return construct_named(input, path, first);
   } catch (const construct::NotCertified& e) {
     if (!may_wrap) throw;
@@ -167,9 +172,11 @@ construct::ConstructResult construct_with_wrap_fallback(ConstructInput& input, c
                       wrap_early ? "the first attempt" : "no attempt", first_failure);
   fallback.taken = wrap_input(input, wrap_settings);
   fallback.why = first_failure;
+  construct::ConstructOptions on_wrap = options;
+  on_wrap.inject_failed_attempts = 0;  // the tests' failures are the surface as read's
   std::string wrap_failure;
   try {
-    return construct_named(input, path, options);
+    return construct_named(input, path, on_wrap);
   } catch (const construct::NotCertified& e) {
     if (!wrap_early) throw construct::NotCertified(fmt::format("{}; its alpha wrap: {}", first_failure, e.what()),
                                                    e.map(), e.boundary(), e.labels());

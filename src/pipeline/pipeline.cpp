@@ -150,7 +150,7 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   const core::Stopwatch clock;
   RunResult r;
   if (o.target_hexes <= 0) throw core::InputError("the target number of hexes must be positive");
-  const bool injects_step = o.inject_failure == "construct-unwrapped" ||
+  const bool injects_step = o.inject_failure == "construct-unwrapped" || o.inject_failure == "construct-attempt-1" ||
                             injected_steps(o.inject_failure, "simplify-step-") > 0 ||
                             injected_steps(o.inject_failure, "optimize-step-") > 0 ||
                             injected_steps(o.inject_failure, "optimize-crossing-") > 0 ||
@@ -183,8 +183,10 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   core::PolycubeMap map;
   run.stage("construct", [&] {
     WrapFallback wrap;
+    construct::ConstructOptions co = o.construct;
+    if (o.inject_failure == "construct-attempt-1") co.inject_failed_attempts = 1;
     const construct::ConstructResult c = construct_with_wrap_fallback(
-        in, input, o.construct, o.repair, o.wrap_fallback, o.inject_failure == "construct-unwrapped", wrap);
+        in, input, co, o.repair, o.wrap_fallback, o.inject_failure == "construct-unwrapped", wrap);
     r.construct_fallback = wrap.taken;
     r.construct_fallback_why = wrap.why;
     r.tets = c.map.num_tets();

@@ -95,7 +95,8 @@ struct RunOptions {
   //! as failing the fold-over check (optimize_fallbacks); "optimize-crossing-N": the first N
   //! count as meshes whose boundary crosses itself (the stiffer barrier's retry first);
   //! "construct-unwrapped": the construction of the surface as read counts as not certified (the
-  //! wrap fallback); "optimize-distance-N": the first N valid meshes count as too far from the input (1: the
+  //! wrap fallback); "construct-attempt-1": its first deformed attempt counts as failed (the next
+  //! planned attempt, or on a surface with gaps the wrap closes, the wrap); "optimize-distance-N": the first N valid meshes count as too far from the input (1: the
   //! first finer grid of step 5 is kept; 2: it is not closer, so the next one is tried (with
   //! refine_far; without it the first mesh stays); 3 with refine_far: the first mesh stays).
   //! Empty (the default): never.

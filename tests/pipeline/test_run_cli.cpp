@@ -8,6 +8,7 @@
 #include "io/polycube_map_io.h"
 #include "quality/domains.h"
 #include "quality/scaled_jacobian.h"
+#include "samples/solid.h"
 #include "structure/structure.h"
 #include "structure/validate.h"
 
@@ -437,6 +438,35 @@ TEST(RunCli, AnUncertifiedSurfaceFallsBackToItsAlphaWrapAndTheReportSaysSo) {
   expect_stopped_at(off, dir / "off", "construct", 3, {"input"});
   EXPECT_NE(off.err.find("injected failure"), std::string::npos) << off.err;
   EXPECT_TRUE(read_report(dir / "off")["construct_fallback"].is_null());
+}
+
+// A surface with a slit narrower than the wrap's ball (a square plate with a slot cut from one
+// side): when its first attempt fails (counted so by `--inject-failure construct-attempt-1`),
+// the wrap is constructed next, before the plan's other attempts. The same failure on a box,
+// which has no such gap, is followed by the plan's second attempt on the box itself.
+TEST(RunCli, ASurfaceWithASlitGetsItsWrapRightAfterAFailingFirstAttempt) {
+  const fs::path dir = temp_dir("slit_wrap");
+  const samples::detail::Polygon2 slotted = {{0, 0}, {10, 0}, {10, 4.9}, {3, 4.9}, {3, 5.1}, {10, 5.1}, {10, 10}, {0, 10}};
+  samples::detail::RemeshParams remesh;
+  remesh.target_edge_length = 0.5;
+  write_surface(dir / "slotted.obj", samples::detail::remesh(samples::detail::prism(slotted, {}, 0.0, 3.0), remesh));
+  const std::string options =
+      "--hexes 300 --padding none --wrap-alpha 0.05 --wrap-offset 0.005 --inject-failure construct-attempt-1";
+  const CliResult slit = run(dir / "slotted.obj", dir / "slit", options);
+  ASSERT_EQ(slit.exit_code, 0) << slit.err;
+  const auto j = read_report(dir / "slit");
+  ASSERT_TRUE(j["construct_fallback"].is_object()) << j["construct_fallback"];
+  EXPECT_TRUE(j["construct_fallback"]["taken"].get<std::string>().starts_with("alpha wrap ("));
+  EXPECT_NE(j["construct_fallback"]["why"].get<std::string>().find("first attempt"), std::string::npos)
+      << j["construct_fallback"]["why"];
+  EXPECT_EQ(j["final"]["inverted"], 0);
+
+  write_surface(dir / "box.obj", test::make_box(10.0, 10.0, 3.0, 4));
+  const CliResult box = run(dir / "box.obj", dir / "box", options);
+  ASSERT_EQ(box.exit_code, 0) << box.err;
+  const auto b = read_report(dir / "box");
+  EXPECT_TRUE(b["construct_fallback"].is_null()) << b["construct_fallback"];
+  EXPECT_EQ(b["construct_attempts"], 2);
 }
 
 // The same kind of solid with the defaults: its four triangles are split until they can be
