@@ -90,18 +90,13 @@ void add_volume(nlohmann::json& j, std::string& text, const char* key, const cha
 //! Gaps of a closed surface narrower than the alpha wrap's ball (repair/thin_gaps.h): where the
 //! construction may fail, and what `run` wraps when it does.
 void add_thin_gaps(nlohmann::json& j, std::string& text, const core::TriMesh& surface, const repair::RepairOptions& o) {
-  const double width = 2.0 * o.wrap_alpha * core::bounding_box(surface.points).diagonal();
-  if (!(width > 0.0)) return;
-  const repair::ThinGaps g = repair::find_thin_gaps(surface, width);
+  const repair::ThinGaps g = repair::gaps_the_wrap_closes(surface, o);
   nlohmann::json sites = nlohmann::json::array();
   for (const core::Vec3& p : g.sites) sites.push_back({p.x(), p.y(), p.z()});
-  j["thin_gaps"] = {{"width", width}, {"vertices", g.vertices}, {"narrowest", g.narrowest}, {"sites", sites}};
-  if (g.vertices == 0) return;
-  text += fmt::format("  gaps narrower than the alpha wrap's ball ({:.3g}): {} vertices face the surface across one, "
-                      "the narrowest {:.3g}, first at",
-                      width, g.vertices, g.narrowest);
-  for (const core::Vec3& p : g.sites) text += fmt::format(" ({:.4g}, {:.4g}, {:.4g})", p.x(), p.y(), p.z());
-  text += "; a construction that fails there may succeed on the wrap, which closes them (run tries it)\n";
+  j["thin_gaps"] = {{"width", g.width}, {"vertices", g.vertices}, {"narrowest", g.narrowest}, {"sites", sites}};
+  if (g.vertices > 0)
+    text += "  " + g.line() + ", which the alpha wrap closes: a construction that fails there may succeed on the "
+            "wrap (run tries it)\n";
 }
 
 void run_info(const InfoOptions& o) {

@@ -117,13 +117,6 @@ void unwrap_input(ConstructInput& input) {
   input.distances = {};
 }
 
-//! The gaps the wrap closes (narrower than its ball's diameter).
-repair::ThinGaps gaps_the_wrap_closes(const core::TriMesh& surface, const repair::RepairOptions& settings) {
-  const double diagonal = core::bounding_box(surface.points).diagonal();
-  if (!(diagonal > 0.0) || !(settings.wrap_alpha > 0.0)) return {};
-  return repair::find_thin_gaps(surface, 2.0 * settings.wrap_alpha * diagonal);
-}
-
 }  // namespace
 
 construct::ConstructResult construct_with_wrap_fallback(ConstructInput& input, const std::filesystem::path& path,
@@ -141,16 +134,15 @@ construct::ConstructResult construct_with_wrap_fallback(ConstructInput& input, c
   //    wrap closes: then a failing first attempt is followed by the wrap (at the first attempt's
   //    usual deadline, half the budget), the likelier remedy, and the plan's other attempts only
   //    come after the wrap failed too.
-  const repair::ThinGaps gaps = may_wrap ? gaps_the_wrap_closes(*input.surface, wrap_settings) : repair::ThinGaps{};
+  const repair::ThinGaps gaps = may_wrap ? repair::gaps_the_wrap_closes(*input.surface, wrap_settings) : repair::ThinGaps{};
   const bool wrap_early = gaps.vertices > 0 && options.max_attempts > 1;
   construct::ConstructOptions first = options;
   if (wrap_early) {
     first.max_attempts = 1;
     if (first.time_limit > 0) first.time_limit = 0.5 * options.time_limit;
-    core::logger().info("construct: {} vertices face the surface across gaps narrower than the wrap's ball (the "
-                        "narrowest {:.3g}, at ({:.3g}, {:.3g}, {:.3g})); if the first attempt fails, the alpha wrap "
-                        "is constructed before the other attempts",
-                        gaps.vertices, gaps.narrowest, gaps.sites[0].x(), gaps.sites[0].y(), gaps.sites[0].z());
+    core::logger().info("construct: {}, which the alpha wrap closes; if the first attempt fails, the wrap is "
+                        "constructed before the other attempts",
+                        gaps.line());
   }
   std::string first_failure;
   try {

@@ -172,10 +172,7 @@ void keep_largest_component(core::TriMesh& mesh, RepairReport& report) {
 
 }  // namespace
 
-namespace {
-
-//! " (first at (x, y, z), (x, y, z))" for the places of one kind, or nothing.
-std::string at(const std::vector<core::Vec3>& places, int count) {
+std::string places_text(const std::vector<core::Vec3>& places, int count) {
   if (places.empty()) return {};
   std::string s = count > static_cast<int>(places.size()) ? " (first at " : " (at ";
   for (std::size_t i = 0; i < places.size(); ++i)
@@ -183,13 +180,11 @@ std::string at(const std::vector<core::Vec3>& places, int count) {
   return s + ")";
 }
 
-}  // namespace
-
 std::vector<std::string> RepairReport::lines(bool where) const {
   std::vector<std::string> out;
   // One line per kind that happened; with `where`, followed by its first places.
   const auto add = [&](int count, std::string line, const std::vector<core::Vec3>& places) {
-    if (count > 0) out.push_back(where ? line + at(places, count) : std::move(line));
+    if (count > 0) out.push_back(where ? line + places_text(places, count) : std::move(line));
   };
   add(merged_vertices, fmt::format("merged {} vertices at the same coordinates as another", merged_vertices),
       sites.merged);

@@ -83,6 +83,10 @@ struct RepairReport {
   [[nodiscard]] std::vector<std::string> lines(bool where = false) const;
 };
 
+//! " (first at (x, y, z), (x, y, z))" for the first places of `count` of one kind (" (at ...)"
+//! when they are all), or nothing when `places` is empty: how the reports say where.
+std::string places_text(const std::vector<core::Vec3>& places, int count);
+
 //! Apply the default repairs above to `mesh`, then those `options` asks for (its labels, if
 //! any, follow its triangles; a wrap or a filled hole drops them).
 RepairReport repair_surface(core::TriMesh& mesh, const RepairOptions& options = {});

@@ -33,16 +33,17 @@ core::Vec3 triangle_normal(const core::TriMesh& s, const core::Tri& t) {
 ThinGaps find_thin_gaps(const core::TriMesh& surface, double width) {
   if (!(width > 0.0)) throw core::InputError(fmt::format("thin gaps: the width must be positive (got {})", width));
   ThinGaps out;
+  out.width = width;
   if (surface.cells.empty()) return out;
+  const auto point = [&](int v) {
+    return Kernel::Point_3(surface.points[v].x(), surface.points[v].y(), surface.points[v].z());
+  };
   Triangles triangles;
   triangles.reserve(surface.cells.size());
   std::vector<core::Vec3> vertex_normals(surface.points.size(), core::Vec3::Zero());
   std::vector<std::vector<int>> incident(surface.points.size());
   for (std::size_t i = 0; i < surface.cells.size(); ++i) {
     const core::Tri& t = surface.cells[i];
-    const auto point = [&](int v) {
-      return Kernel::Point_3(surface.points[v].x(), surface.points[v].y(), surface.points[v].z());
-    };
     triangles.emplace_back(point(t[0]), point(t[1]), point(t[2]));
     const core::Vec3 n = triangle_normal(surface, t);  // |n| = twice the area: area-weighted
     for (const int v : t) {
@@ -55,7 +56,7 @@ ThinGaps find_thin_gaps(const core::TriMesh& surface, double width) {
     if (incident[v].empty() || vertex_normals[v].norm() == 0.0) continue;
     const core::Vec3 dir = vertex_normals[v].normalized();
     const core::Vec3& p = surface.points[v];
-    const Kernel::Ray_3 ray(Kernel::Point_3(p.x(), p.y(), p.z()), Kernel::Vector_3(dir.x(), dir.y(), dir.z()));
+    const Kernel::Ray_3 ray(point(static_cast<int>(v)), Kernel::Vector_3(dir.x(), dir.y(), dir.z()));
     // The vertex's own triangles touch the ray at its origin: skipped.
     const auto skip = [&](Triangles::const_iterator id) {
       const int t = static_cast<int>(id - triangles.begin());
@@ -71,9 +72,22 @@ ThinGaps find_thin_gaps(const core::TriMesh& surface, double width) {
     if (!(along < width)) continue;
     if (out.vertices == 0 || along < out.narrowest) out.narrowest = std::max(0.0, along);
     ++out.vertices;
-    if (out.sites.size() < ThinGaps::kMaxSites) out.sites.push_back(p);
+    RepairReport::note(out.sites, p);
   }
   return out;
+}
+
+std::string ThinGaps::line() const {
+  if (vertices == 0) return {};
+  return fmt::format("{} vertices face the surface across gaps narrower than {:.3g} (the narrowest {:.3g})", vertices,
+                     width, narrowest) +
+         places_text(sites, vertices);
+}
+
+ThinGaps gaps_the_wrap_closes(const core::TriMesh& surface, const RepairOptions& wrap) {
+  const double diagonal = core::bounding_box(surface.points).diagonal();
+  if (!(diagonal > 0.0) || !(wrap.wrap_alpha > 0.0)) return {};
+  return find_thin_gaps(surface, 2.0 * wrap.wrap_alpha * diagonal);
 }
 
 }  // namespace polycube::repair

@@ -25,7 +25,7 @@ TEST(ThinGaps, TwoBoxesAcrossASlotNarrowerThanTheWidthFaceEachOtherAtTheirInnerV
   const repair::ThinGaps g = repair::find_thin_gaps(two_boxes(0.05), 0.1);
   EXPECT_EQ(g.vertices, 2 * 9);
   EXPECT_NEAR(g.narrowest, 0.05, 1e-12);
-  ASSERT_EQ(g.sites.size(), repair::ThinGaps::kMaxSites);
+  ASSERT_EQ(g.sites.size(), repair::RepairReport::kMaxSites);
   for (const core::Vec3& p : g.sites)
     EXPECT_TRUE(std::abs(p.x() - 1.0) < 1e-12 || std::abs(p.x() - 1.05) < 1e-12) << p.transpose();
 }
