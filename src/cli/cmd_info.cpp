@@ -162,7 +162,8 @@ void register_info(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("info",
                                      "Counts, bounding box, closed/manifold/orientable checks, "
                                      "genus and components of a mesh file, and for a surface the repairs "
-                                     "construct and run would apply, with where (the first places of each)");
+                                     "construct and run would apply, with where (the first places of each), and the gaps "
+                                     "narrower than the alpha wrap's ball, which run wraps when its construction fails");
   sub->add_option("file", opts->input, "Mesh file (.obj .off .stl .ply .mesh .vtk .msh)")
       ->required();
   add_expert_options(*sub, add_repair_options(*sub, opts->repair));
