@@ -65,10 +65,19 @@ std::vector<std::array<int, 2>> opposite_facets(const std::vector<int>& around) 
   return {};
 }
 
+//! The cells around edge e as program variables, in turning order (cells_around(); at a
+//! boundary edge the ghosts first and last).
+std::vector<int> cell_variables(const core::HexMesh& mesh, const Topology& tp, const Variables& v, int e) {
+  std::vector<int> out;
+  for (int c : detail::cells_around(mesh, tp, e))
+    out.push_back(c < tp.num_hexes ? v.hex[c] : v.ghost[c - tp.num_hexes]);
+  return out;
+}
+
 struct Model {
   solve::LinearProgram program;
   Variables v;
-  std::vector<std::vector<std::array<int, 2>>> pairs;  //!< #E: opposite facet pairs of te edges
+  std::vector<std::vector<std::array<int, 2>>> pairs;       //!< #E: opposite facet pairs of te edges
   std::vector<std::vector<std::array<int, 2>>> edge_pairs;  //!< #V: opposite te-edge pairs
 };
 
@@ -238,6 +247,60 @@ std::vector<double> surface_start(const Model& m, const Topology& tp) {
   return cut_solution(m, tp, inside);
 }
 
+//! The cut that pads the hexes of HF as a pillow of their own: those hexes inside, the ghosts
+//! of HF outside, every other ghost on its hex's side (its facet not padded), then, until every
+//! rule holds, a ghost outside where its facet would stop a padded patch on a flat face or
+//! where a concave edge's two ghosts differ, and a hex inside where two sheets would cross at
+//! an edge. Each fix pads one more facet or hex, so it ends. Where turns cost little, this
+//! layer, one hex deep, costs the walls around HF's patches instead of the rest of the
+//! surface. Empty when the rules still fail (they do not on a hex mesh of a solid).
+std::vector<double> pillow_start(const Model& m, const core::HexMesh& mesh, const Topology& tp,
+                                 const std::vector<std::uint8_t>& hard) {
+  const Variables& v = m.v;
+  std::vector<double> inside(static_cast<std::size_t>(m.program.num_variables()), 0.0);
+  std::vector<char> ghost_out(static_cast<std::size_t>(m.program.num_variables()), 0);
+  for (int f = 0; f < tp.t.num_faces(); ++f)
+    if (hard[f]) {
+      inside[v.hex[tp.t.faces.face_cells[f][0]]] = 1.0;
+      ghost_out[v.ghost[f]] = 1;
+    }
+  std::vector<std::vector<int>> cycles(static_cast<std::size_t>(tp.t.num_edges()));
+  for (int e = 0; e < tp.t.num_edges(); ++e)
+    if (tp.t.edge_valence(e) != 1) cycles[e] = cell_variables(mesh, tp, v, e);
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (int f = 0; f < tp.t.num_faces(); ++f)
+      if (v.ghost[f] >= 0)
+        inside[v.ghost[f]] = ghost_out[v.ghost[f]] ? 0.0 : inside[v.hex[tp.t.faces.face_cells[f][0]]];
+    const auto pad_ghosts = [&](int a, int b) {
+      changed = changed || !ghost_out[a] || !ghost_out[b];
+      ghost_out[a] = ghost_out[b] = 1;
+    };
+    for (int e = 0; e < tp.t.num_edges(); ++e) {
+      std::vector<int> c = cycles[e];
+      if (c.empty()) continue;
+      const bool boundary = tp.t.edge_on_boundary[e] != 0;
+      const auto in = [&](int k) { return inside[c[k]] > 0.5; };
+      if (boundary && c.size() == 4 && in(1) && in(2) && in(0) != in(3)) pad_ghosts(c[0], c[3]);
+      if (boundary && c.size() == 5) {
+        if (in(0) != in(4)) pad_ghosts(c[0], c[4]);
+        c.pop_back();
+      }
+      if (c.size() != 4 || in(0) == in(1) || in(1) == in(2) || in(2) == in(3)) continue;
+      // Two sheets crossing: the cheaper fix takes in a hex of the outside pair.
+      const int last_hex = boundary && cycles[e].size() == 4 ? 2 : 3;  // E2H: c3 is a ghost
+      for (int k = boundary ? 1 : 0; k <= last_hex; ++k)
+        if (!in(k)) {
+          inside[c[k]] = 1.0;
+          changed = true;
+          break;
+        }
+    }
+  }
+  std::vector<double> s = cut_solution(m, tp, inside);
+  return m.program.satisfied_by(s) ? s : std::vector<double>{};
+}
+
 //! Cells (hex and ghost variables) next to each other: across a facet, or two ghosts at a
 //! boundary edge.
 std::vector<std::vector<int>> cell_neighbours(const Model& m, const Topology& tp) {
@@ -359,7 +422,7 @@ std::vector<double> repair_rounding(const Model& m, const Topology& tp, const st
     if (sub.program.num_variables() > kRepairLargest * m.program.num_variables()) break;
     if (!sub.consistent) continue;
     solve::MilpOptions o;
-    o.node_limit = kRepairNodes;  // the same point on a fast or a loaded machine
+    o.node_limit = kRepairNodes;   // the same point on a fast or a loaded machine
     o.cuts_and_heuristics = true;  // a small program
     o.time_limit = seconds > 0 ? left : 0.0;
     const solve::MilpResult r = solve::solve_program(sub.program, o);
@@ -387,8 +450,8 @@ Selection select_facets_to_pad(const core::HexMesh& mesh, const std::vector<std:
     if (hard[f] && !tp.t.faces.is_boundary(f))
       throw core::InputError(fmt::format("hard set: facet {} is not on the boundary", f));
   if (!(options.lambda >= 0) || !(options.time_limit >= 0))
-    throw core::InputError(fmt::format("selection: lambda and the time limit must be >= 0 (got {}, {})",
-                                       options.lambda, options.time_limit));
+    throw core::InputError(fmt::format("selection: lambda and the time limit must be >= 0 (got {}, {})", options.lambda,
+                                       options.time_limit));
   if (std::none_of(hard.begin(), hard.end(), [](std::uint8_t h) { return h != 0; })) {
     // Nothing must be padded: the empty set is valid and costs 0, the least any set costs.
     Selection none;
@@ -402,6 +465,11 @@ Selection select_facets_to_pad(const core::HexMesh& mesh, const std::vector<std:
   solve::MilpOptions mo;
   mo.time_limit = options.time_limit;
   mo.start = surface_start(m, tp);
+  if (std::vector<double> pillow = pillow_start(m, mesh, tp, hard); !pillow.empty()) {
+    core::logger().debug("selection: starts cost {:.6f} (every surface facet) and {:.6f} (HF's hexes as a pillow)",
+                         m.program.objective(mo.start), m.program.objective(pillow));
+    if (m.program.objective(pillow) < m.program.objective(mo.start)) mo.start = std::move(pillow);
+  }
   mo.branch_and_cut_max_variables = kBranchAndCutLargest;
   const core::Stopwatch solve_clock;
   mo.round = [&](const std::vector<double>& relaxation) {

@@ -37,8 +37,11 @@
 //! What the solver gets: y fixed at HF; te only where a turn can happen and is not forced; the
 //! XOR upper bounds (x ≤ y_a + y_b, x ≤ 2 − y_a − y_b) only for facets that appear in a rule or
 //! turn row (elsewhere minimization already makes x = |y_a − y_b|, so they change nothing); and
-//! the pad-every-surface-facet cut as a start (every hex inside, every ghost outside: always
-//! feasible), so a time limit still returns a valid PF. When the relaxation is fractional, its
+//! the cheaper of two cuts as a start, so a time limit still returns a valid PF: padding every
+//! surface facet (every hex inside, every ghost outside: always feasible, and the optimum where
+//! turns cost much) and the pillow of HF's hexes (those hexes inside, a sheet one hex deep under
+//! HF that turns at its rim, grown where a rule needs it: the optimum where turns cost little,
+//! which a large program's relaxation does not find when it is fractional). When the relaxation is fractional, its
 //! cut rounded at 1/2 and repaired in a small neighbourhood of the fractional cells (the program
 //! over those cells alone, the rest fixed) is a second start, often far cheaper: the relaxation
 //! is typically integral but at a few ghosts.
@@ -53,8 +56,8 @@ namespace polycube::padding {
 
 //! Options of select_facets_to_pad().
 struct SelectionOptions {
-  double lambda = 1.0;      //!< λ of equation 4.7: weight of the layer's turns against its hexes
-  double time_limit = 60.0; //!< seconds for CBC (0: none); the best PF found is returned
+  double lambda = 1.0;       //!< λ of equation 4.7: weight of the layer's turns against its hexes
+  double time_limit = 60.0;  //!< seconds for CBC (0: none); the best PF found is returned
 };
 
 //! Result of select_facets_to_pad().

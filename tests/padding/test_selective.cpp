@@ -153,5 +153,29 @@ TEST(BinaryProblem, ALargerLambdaNeverAddsTurns) {
   }
 }
 
+TEST(BinaryProblem, ALargeMeshWithoutTurnCostsGetsItsHardPatchPaddedAsAPillow) {
+  // A 3 x 3 patch in the middle of the top face of a 20 x 20 x 12 grid, λ = 0: the cheapest
+  // valid set is the patch and the sheet under its hexes, one hex deep (9 facets below them and
+  // 12 around them: thesis figure 4.5's turning sheet). The
+  // program is too large for branch and cut under a time limit (more than 20,000 variables) and
+  // its relaxation is fractional, so the answer is the best start: the pillow, not every
+  // surface facet.
+  const core::HexMesh g = test::hex_grid(20, 20, 12);
+  const auto hard = boundary_facets_where(
+      g, [](const Vec3& p) { return p.z() == 12.0 && p.x() >= 8 && p.x() <= 11 && p.y() >= 8 && p.y() <= 11; });
+  ASSERT_EQ(test::count_set(hard), 9);
+  const padding::Selection s = padding::select_facets_to_pad(g, hard, {.lambda = 0.0, .time_limit = 60});
+  EXPECT_GT(s.variables, 20000);
+  EXPECT_EQ(s.selected, 9 + 9 + 12);
+  for (std::size_t f = 0; f < hard.size(); ++f)
+    if (hard[f]) {
+      EXPECT_EQ(s.facets[f], 1);
+    }
+  EXPECT_TRUE(padding::check_selection(g, s.facets).ok());
+  const padding::SheetResult r = padding::insert_sheet(g, s.facets);
+  EXPECT_EQ(r.added_hexes, 30);
+  EXPECT_EQ(r.mesh.num_cells(), g.num_cells() + 30);
+}
+
 }  // namespace
 }  // namespace polycube
