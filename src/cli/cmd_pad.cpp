@@ -227,7 +227,9 @@ void register_pad(CLI::App& app) {
                   "Selective: run the mapping analysis on this mesh instead (same hexes, e.g. the gridded hex.mesh of "
                   "an optimized mesh: the map's distortion before the optimizer hid part of it)");
   sub->add_option("--lambda", opts->selection.lambda,
-                  "Selective: weight of the layer's turns (new singularities) against its hexes")
+                  "Selective: weight of the layer's turns (new singularities) against its hexes (thesis eq. 4.7): 0 "
+                  "pads the fewest hexes, the layer turning wherever that saves some; larger values pad more hexes "
+                  "with fewer turns, up to the whole boundary")
       ->check(cli::non_negative())
       ->capture_default_str();
   sub->add_option("--threshold", opts->analysis.threshold,

@@ -301,6 +301,12 @@ void register_run(CLI::App& app) {
       "After optimizing: 'none', 'global' (a layer of hexes under the whole boundary) or 'selective' "
       "(only where the polycube map distorts the shape; thesis ch. 4); the padded mesh is optimized again "
       "and written as hex_padded.mesh and hex_padded.vtk");
+  sub->add_option("--padding-lambda", opts->run.padding_selection.lambda,
+                  "Selective padding: weight of the new layer's turns (new singular edges and vertices) against its "
+                  "hexes (thesis eq. 4.7): 0 pads the fewest hexes, the layer turning wherever that saves some; "
+                  "larger values pad more hexes with fewer turns, up to the whole boundary")
+      ->check(cli::non_negative())
+      ->capture_default_str();
   sub->add_option("--padding-min-sj", opts->run.padding_usable_min_sj,
                   "The padded mesh replaces the optimized one when its minimum scaled Jacobian is at least the "
                   "unpadded mesh's or at least this; otherwise the unpadded mesh is kept (the padded one is still "
