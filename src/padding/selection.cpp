@@ -465,9 +465,11 @@ Selection select_facets_to_pad(const core::HexMesh& mesh, const std::vector<std:
   solve::MilpOptions mo;
   mo.time_limit = options.time_limit;
   mo.start = surface_start(m, tp);
+  const core::Stopwatch pillow_clock;
   if (std::vector<double> pillow = pillow_start(m, mesh, tp, hard); !pillow.empty()) {
-    core::logger().debug("selection: starts cost {:.6f} (every surface facet) and {:.6f} (HF's hexes as a pillow)",
-                         m.program.objective(mo.start), m.program.objective(pillow));
+    core::logger().debug("selection: starts cost {:.6f} (every surface facet) and {:.6f} (HF's hexes as a pillow, "
+                         "{:.2f} s)",
+                         m.program.objective(mo.start), m.program.objective(pillow), pillow_clock.seconds());
     if (m.program.objective(pillow) < m.program.objective(mo.start)) mo.start = std::move(pillow);
   }
   mo.branch_and_cut_max_variables = kBranchAndCutLargest;
