@@ -552,6 +552,13 @@ CLI::Validator non_negative() {
   return number_check([](double v) { return v >= 0.0; }, "a number >= 0", "NONNEGATIVE");
 }
 
+CLI::Validator auto_or_non_negative() {
+  const CLI::Validator number = non_negative();
+  return CLI::Validator(
+      [number](std::string& text) { return text == "auto" ? std::string() : number(text); }, "auto or a number >= 0",
+      "AUTO_OR_NONNEGATIVE");
+}
+
 CLI::Validator in_range(double lo, double hi) {
   return number_check([lo, hi](double v) { return v >= lo && v <= hi; },
                       fmt::format("a number from {:g} to {:g}", lo, hi), "RANGE");

@@ -43,6 +43,7 @@ enum ExitCode : int { kOk = 0, kUsage = 1, kBadInput = 2, kNoResult = 3, kIntern
 //! These refuse nan and infinities and say the bound in plain words.
 CLI::Validator positive();                        //!< finite and > 0
 CLI::Validator non_negative();                    //!< finite and >= 0
+CLI::Validator auto_or_non_negative();            //!< 'auto', or finite and >= 0
 CLI::Validator in_range(double lo, double hi);    //!< finite and within [lo, hi]
 
 //! Flags every subcommand understands.

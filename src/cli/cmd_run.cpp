@@ -122,6 +122,8 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
                    {"selected_facets", known(r.padding_selected_facets)},
                    {"edge_turns", known(r.padding_edge_turns)},
                    {"vertex_turns", known(r.padding_vertex_turns)},
+                   {"fewest_hexes", r.padding_fewest_hexes.empty() ? nlohmann::json(nullptr)
+                                                                   : nlohmann::json(r.padding_fewest_hexes)},
                    {"optimize_seconds", known(r.padding_optimize_seconds)}}},
       {"fabricate",
        {{"boxes", known(r.part_boxes)},
@@ -301,12 +303,20 @@ void register_run(CLI::App& app) {
       "After optimizing: 'none', 'global' (a layer of hexes under the whole boundary) or 'selective' "
       "(only where the polycube map distorts the shape; thesis ch. 4); the padded mesh is optimized again "
       "and written as hex_padded.mesh and hex_padded.vtk");
-  sub->add_option("--padding-lambda", opts->run.padding_selection.lambda,
-                  "Selective padding: weight of the new layer's turns (new singular edges and vertices) against its "
-                  "hexes (thesis eq. 4.7): 0 pads the fewest hexes, the layer turning wherever that saves some; "
-                  "larger values pad more hexes with fewer turns, up to the whole boundary")
-      ->check(cli::non_negative())
-      ->capture_default_str();
+  sub->add_option_function<std::string>(
+         "--padding-lambda",
+         [o = &opts->run](const std::string& v) {
+           o->padding_fewest_too = v == "auto";
+           o->padding_selection.lambda = v == "auto" ? 1.0 : std::stod(v);
+         },
+         "Selective padding: weight of the new layer's turns (new singular edges and vertices) against its "
+         "hexes (thesis eq. 4.7): 0 pads the fewest hexes, the layer turning wherever that saves some; larger "
+         "values pad more hexes with fewer turns, up to the whole boundary. 'auto': the thesis's 1, and where "
+         "that pads the whole boundary, also 0 when it pads at most half of it, keeping the padded mesh with the "
+         "higher mSJ (thesis 4.6: the best value depends on the shape)")
+      ->check(cli::auto_or_non_negative())
+      ->default_str("auto")
+      ->type_name("auto|X");
   sub->add_option("--padding-min-sj", opts->run.padding_usable_min_sj,
                   "The padded mesh replaces the optimized one when its minimum scaled Jacobian is at least the "
                   "unpadded mesh's or at least this; otherwise the unpadded mesh is kept (the padded one is still "

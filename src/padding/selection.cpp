@@ -472,7 +472,8 @@ Selection select_facets_to_pad(const core::HexMesh& mesh, const std::vector<std:
                          m.program.objective(mo.start), m.program.objective(pillow), pillow_clock.seconds());
     if (m.program.objective(pillow) < m.program.objective(mo.start)) mo.start = std::move(pillow);
   }
-  mo.branch_and_cut_max_variables = kBranchAndCutLargest;
+  // Without a search every program counts as too large to search.
+  mo.branch_and_cut_max_variables = options.search ? kBranchAndCutLargest : 1;
   const core::Stopwatch solve_clock;
   mo.round = [&](const std::vector<double>& relaxation) {
     const double left = options.time_limit > 0 ? std::max(options.time_limit - solve_clock.seconds(), 1e-3) : 0.0;

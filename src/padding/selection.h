@@ -58,6 +58,9 @@ namespace polycube::padding {
 struct SelectionOptions {
   double lambda = 1.0;       //!< λ of equation 4.7: weight of the layer's turns against its hexes
   double time_limit = 60.0;  //!< seconds for CBC (0: none); the best PF found is returned
+  //! Under a time limit, branch and cut on programs small enough to search (false: the cheapest
+  //! start or repaired rounding only, as on large programs; fast, and the same on any machine)
+  bool search = true;
 };
 
 //! Result of select_facets_to_pad().

@@ -117,6 +117,46 @@ void clear_earlier_run(const std::filesystem::path& out_dir, const std::filesyst
 //! Whether the pad stage runs: padding asked for (selective by default) on an optimized mesh.
 bool pads(const RunOptions& o) { return o.hexmesh && o.optimize && o.padding != padding::PaddingMode::None; }
 
+//! The pad stage's kept result `padded`, or the padded mesh of the plan at λ = 0 where
+//! pad_with_fewest_hexes() makes one that passes the same rules with an mSJ at least as high:
+//! as good a mesh with fewer hexes. `hex` becomes the kept mesh, hex_padded.* its files.
+void keep_fewest_hexes(core::HexMesh& hex, const ConstructInput& in, const RunOptions& o, const std::string& mode,
+                       padding::PadResult& padded, double unpadded_distance, const std::filesystem::path& out_dir,
+                       RunResult& r, const std::function<void(const std::filesystem::path&)>& wrote) {
+  const double planned_seconds = r.padding_analysis_seconds + r.padding_solve_seconds;
+  RunResult fewest_r = r;
+  std::optional<padding::PadResult> fewest;
+  try {
+    fewest = pad_with_fewest_hexes(hex, in, o, mode + " (lambda 0)", fewest_r);
+  } catch (const core::Error& e) {
+    fewest_r.padding_fewest_hexes = fmt::format("lambda 0: failed ({})", e.what());
+  }
+  r.padding_fewest_hexes = fewest_r.padding_fewest_hexes;
+  if (fewest) {
+    const double msj = fewest->after.scaled_jacobian.min, msj_planned = padded.after.scaled_jacobian.min;
+    std::string why = fewest->check.ok() ? padding::why_not_kept(*fewest, unpadded_distance,
+                                                                 o.optimize_options.hausdorff_bound,
+                                                                 o.padding_usable_min_sj)
+                                         : "it fails the fold-over check: " + fold_summary(fewest->check);
+    if (why.empty() && msj < msj_planned) why = fmt::format("mSJ {:.3f} below lambda {:g}'s {:.3f}", msj,
+                                                            o.padding_selection.lambda, msj_planned);
+    r.padding_fewest_hexes = fmt::format(
+        "lambda 0: {} hexes added (lambda {:g}: {}, planned in {:.1f} s), mSJ {:.3f}, #Sv {}: {}", fewest->added_hexes,
+        o.padding_selection.lambda, padded.added_hexes, planned_seconds, msj, fewest->after.singular_vertices,
+        why.empty() ? "kept" : "not kept, " + why);
+    core::logger().info("pad: {}", r.padding_fewest_hexes);
+    if (why.empty()) {
+      fewest_r.padding_fewest_hexes = r.padding_fewest_hexes;
+      fewest_r.msj_padded = msj;
+      r = std::move(fewest_r);
+      write_padded(*fewest, out_dir, wrote);
+      hex = std::move(fewest->mesh);
+      return;
+    }
+  }
+  hex = std::move(padded.mesh);
+}
+
 //! The fabricate stage: decompose, check, write parts/ (nothing when a part fails its checks or
 //! the chamber, so a failed stage leaves no half-made assembly).
 void fabricate_and_write(const core::PolycubeMap& map, const core::TriMesh& solid, const RunOptions& o,
@@ -323,7 +363,7 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
                             why);
         return;
       }
-      hex = std::move(p->mesh);
+      keep_fewest_hexes(hex, in, o, mode, *p, unpadded_distance, out_dir, r, add_file);
     });
 
   // 7. quality of the final hex mesh

@@ -77,6 +77,10 @@ struct RunOptions {
   padding::PadOptions padding_options;
   padding::AnalysisOptions padding_analysis;    //!< selective padding's mapping analysis
   padding::SelectionOptions padding_selection;  //!< selective padding's binary problem
+  //! Selective padding: where the plan at padding_selection.lambda pads every boundary facet,
+  //! also plan at λ = 0 and keep the padded mesh with the higher mSJ (stage_steps.h,
+  //! pad_with_fewest_hexes; `--padding-lambda auto`)
+  bool padding_fewest_too = true;
   //! Mesh the map (stages hexmesh, optimize, pad, quality); false: the map only (and its parts).
   bool hexmesh = true;
   //! Cut the input solid into parts along the (simplified) map: stage "fabricate", right after
@@ -167,6 +171,9 @@ struct RunResult {
   int padding_selected_facets = -1;    //!< selective: |PF|
   int padding_edge_turns = -1, padding_vertex_turns = -1;  //!< selective: turns of the new layer
   int padding_added = -1;              //!< hexes of the new layer
+  //! selective: what the plan at λ = 0 gave where the plan at the options' λ padded every boundary
+  //! facet (RunOptions::padding_fewest_too); empty when it was not planned
+  std::string padding_fewest_hexes;
   int singular_vertices_before = -1, singular_edges_before = -1;  //!< #Sv, #Se before padding
   int singular_vertices_after = -1, singular_edges_after = -1;    //!< ... after
   double padding_insert_seconds = -1, padding_optimize_seconds = -1;

@@ -47,6 +47,20 @@ std::optional<padding::PadResult> pad_and_record(const core::HexMesh& hex, const
                                                  const std::filesystem::path& out_dir, RunResult& r,
                                                  const FileWritten& wrote);
 
+//! Write a padded mesh that passed its check: hex_padded.mesh and hex_padded.vtk.
+void write_padded(const padding::PadResult& p, const std::filesystem::path& out_dir, const FileWritten& wrote);
+
+//! The other end of selective padding's trade-off (thesis §4.5.1; §4.6: the best λ depends on the
+//! shape, found by trying λ values and keeping the best result): when the plan at the options'
+//! λ padded every boundary facet (r.padding_selected_facets; selective padding was not
+//! selective), the plan at λ = 0, turns free and the fewest hexes, padded and optimized when it
+//! pads at most half of the boundary facets (a set nearly as large saves little for its turns).
+//! Records the padding's figures in `r` (a copy the caller keeps with the mesh) and, when it
+//! pads nothing, why in r.padding_fewest_hexes. Nothing when RunOptions::padding_fewest_too is
+//! off. Writes nothing.
+std::optional<padding::PadResult> pad_with_fewest_hexes(const core::HexMesh& hex, const ConstructInput& in,
+                                                        const RunOptions& o, const std::string& how, RunResult& r);
+
 //! Forget a padded mesh that is not kept (only an injected failure can reject a mesh that
 //! passed the check, the only one pad_and_record writes).
 void discard_padded(const std::filesystem::path& out_dir, RunResult& r);

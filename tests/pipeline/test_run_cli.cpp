@@ -934,7 +934,7 @@ TEST(RunCli, JsonOnFailureIsTheReportWithNullsAndTheOptions) {
   EXPECT_EQ(j["options"]["padding"], "none");
   EXPECT_EQ(j["options"]["sizing"], "uniform");  // not given: the default, by name
   EXPECT_EQ(j["options"]["no-simplify"], false);
-  EXPECT_EQ(j["options"]["padding-lambda"], "1");  // selective padding's λ, the thesis's by default
+  EXPECT_EQ(j["options"]["padding-lambda"], "auto");  // selective padding's λ: 1, and 0 where 1 pads everything
   EXPECT_TRUE(j["options"]["chamber"].is_null());
   EXPECT_FALSE(j["options"].contains("inject-failure"));  // hidden
   EXPECT_EQ(j["version"], "0.1.0");
