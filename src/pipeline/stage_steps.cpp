@@ -137,11 +137,12 @@ std::optional<padding::PadResult> pad_with_fewest_hexes(const core::HexMesh& hex
   fewest.padding_selection.search = false;
   const std::vector<std::uint8_t> facets = padding_facets(hex, padding::PaddingMode::Selective, fewest, r);
   const int selected = static_cast<int>(std::count(facets.begin(), facets.end(), 1));
-  if (selected == 0 || selected > kFewestShare * whole) {
+  if (selected > kFewestShare * whole) {
     r.padding_fewest_hexes = fmt::format("lambda 0: {} of the {} boundary facets, not padded (more than {:.0f} %)",
                                          selected, whole, 100 * kFewestShare);
     return std::nullopt;
   }
+  if (selected == 0) return std::nullopt;  // HF empty: the plan at λ = 1 padded nothing either
   padding::PadResult p = padding::pad_hex_mesh(hex, in.target, facets, o.padding_options);
   in.distances.remember(p.mesh, p.distance);
   record_padding(p, how, r);
