@@ -277,18 +277,17 @@ std::vector<double> pillow_start(const Model& m, const core::HexMesh& mesh, cons
       ghost_out[a] = ghost_out[b] = 1;
     };
     for (int e = 0; e < tp.t.num_edges(); ++e) {
-      std::vector<int> c = cycles[e];
+      const std::vector<int>& c = cycles[e];
       if (c.empty()) continue;
       const bool boundary = tp.t.edge_on_boundary[e] != 0;
       const auto in = [&](int k) { return inside[c[k]] > 0.5; };
       if (boundary && c.size() == 4 && in(1) && in(2) && in(0) != in(3)) pad_ghosts(c[0], c[3]);
-      if (boundary && c.size() == 5) {
-        if (in(0) != in(4)) pad_ghosts(c[0], c[4]);
-        c.pop_back();
-      }
-      if (c.size() != 4 || in(0) == in(1) || in(1) == in(2) || in(2) == in(3)) continue;
-      // Two sheets crossing: the cheaper fix takes in a hex of the outside pair.
-      const int last_hex = boundary && cycles[e].size() == 4 ? 2 : 3;  // E2H: c3 is a ghost
+      if (boundary && c.size() == 5 && in(0) != in(4)) pad_ghosts(c[0], c[4]);
+      // The closed cycle of four cells: an E3H edge's two ghosts are one cell (c4 left out).
+      const std::size_t cells = boundary && c.size() == 5 ? 4 : c.size();
+      if (cells != 4 || in(0) == in(1) || in(1) == in(2) || in(2) == in(3)) continue;
+      // Two sheets crossing: take in the first hex of the outside pair.
+      const int last_hex = boundary && c.size() == 4 ? 2 : 3;  // E2H: c3 is a ghost
       for (int k = boundary ? 1 : 0; k <= last_hex; ++k)
         if (!in(k)) {
           inside[c[k]] = 1.0;
