@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <functional>
 
 namespace polycube {
@@ -150,6 +151,78 @@ TEST(BinaryProblem, ALargerLambdaNeverAddsTurns) {
     if (lambda >= 1.0) {
       EXPECT_EQ(s.selected, 36);
     }
+  }
+}
+
+//! A `slab`-layer 12 x 12 slab with a 4 x 4 x 6 tower on the middle of its top (thesis figures
+//! 4.2-4.3's box and cylinder, the cylinder's polycube being a box): a 12 x 12 x (slab + 6) grid
+//! without the hexes above the slab outside the tower, its points renumbered.
+core::HexMesh tower_on_slab(int slab) {
+  const core::HexMesh g = test::hex_grid(12, 12, slab + 6);
+  core::HexMesh m;
+  std::vector<int> id(g.points.size(), -1);
+  for (const auto& c : g.cells) {
+    Vec3 centre = Vec3::Zero();
+    for (int v : c) centre += g.points[v] / 8.0;
+    const bool tower = centre.x() > 4 && centre.x() < 8 && centre.y() > 4 && centre.y() < 8;
+    if (centre.z() > slab && !tower) continue;
+    auto& kept = m.cells.emplace_back();
+    for (int k = 0; k < 8; ++k) {
+      if (id[c[k]] < 0) {
+        id[c[k]] = static_cast<int>(m.points.size());
+        m.points.push_back(g.points[c[k]]);
+      }
+      kept[k] = id[c[k]];
+    }
+  }
+  return m;
+}
+
+TEST(BinaryProblem, ATowerIsPaddedStraightThroughAThinSlabAndClosedAtItsFootOnAThickOne) {
+  // HF = the tower's four sides (96 facets). The layer around them must close: by a sheet on
+  // the slab's top under the tower (16 facets; 16 edge turns at its rim, where the sheet leaves
+  // the sides), or straight on through the slab to its bottom (a tube: 32 facets per 2 layers
+  // of slab; 4 edge turns per layer, at the tube's vertical corners). Thesis figure 4.3 shows
+  // the tube; which costs less (eq. 4.7) depends on the slab's thickness: the tube through 2
+  // layers, the foot's sheet under a slab of 8.
+  for (const int slab : {2, 8}) {
+    SCOPED_TRACE(slab);
+    const core::HexMesh g = tower_on_slab(slab);
+    const auto faces = core::unique_faces(g);
+    std::vector<std::uint8_t> hard(faces.num_faces(), 0);
+    for (int f = 0; f < faces.num_faces(); ++f) {
+      double low = 1e9, high = -1e9;
+      for (int v : faces.faces[f]) {
+        low = std::min(low, g.points[v].z());
+        high = std::max(high, g.points[v].z());
+      }
+      hard[f] = faces.is_boundary(f) && low >= slab && high > low ? 1 : 0;
+    }
+    ASSERT_EQ(test::count_set(hard), 96);
+    const padding::Selection s = padding::select_facets_to_pad(g, hard, {.lambda = 1.0, .time_limit = 60});
+    EXPECT_TRUE(s.optimal);
+    EXPECT_TRUE(padding::check_selection(g, s.facets).ok());
+    const bool tube = slab == 2;
+    EXPECT_EQ(s.selected, 96 + (tube ? 16 * slab : 16));
+    EXPECT_EQ(s.edge_turns, tube ? 4 * slab : 16);
+    EXPECT_EQ(s.vertex_turns, 0);
+    for (int f = 0; f < faces.num_faces(); ++f) {
+      if (!s.facets[f] || hard[f]) continue;
+      EXPECT_FALSE(faces.is_boundary(f));
+      double low = 1e9, high = -1e9;
+      for (int v : faces.faces[f]) {
+        low = std::min(low, g.points[v].z());
+        high = std::max(high, g.points[v].z());
+      }
+      if (tube) {
+        EXPECT_LE(high, slab);  // a wall of the tube, in the slab
+        EXPECT_LT(low, high);
+      } else {
+        EXPECT_EQ(low, slab);  // the sheet at the tower's foot
+        EXPECT_EQ(high, slab);
+      }
+    }
+    EXPECT_EQ(padding::insert_sheet(g, s.facets).added_hexes, s.selected);
   }
 }
 
