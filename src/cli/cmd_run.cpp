@@ -34,6 +34,7 @@ struct RunCliOptions {
   bool no_simplify = false;
   bool no_optimize = false;
   bool no_wrap_fallback = false;
+  bool no_labeling_fallback = false;
   std::vector<double> chamber;
   pipeline::RunOptions run;
 };
@@ -70,6 +71,31 @@ double plan_seconds(const pipeline::RunResult& r) {
   return r.padding_analysis_seconds < 0 ? -1.0 : r.padding_analysis_seconds + r.padding_solve_seconds;
 }
 
+//! The labeling fallback in the report: null when not tried.
+nlohmann::json labeling_fallback_json(const pipeline::LabelingFallback& f) {
+  if (!f.tried) return nullptr;
+  return {{"kept", f.kept},
+          {"compactness", f.compactness},
+          {"charts_first", known(f.charts_first)},
+          {"charts_retry", known(f.charts_retry)},
+          {"hausdorff_relative_first", known(f.distance_first)},
+          {"hausdorff_relative_retry", known(f.distance_retry)},
+          {"why_not", f.why_not.empty() ? nlohmann::json(nullptr) : nlohmann::json(f.why_not)}};
+}
+
+//! The summary's line on the labeling fallback (empty when not tried).
+std::string labeling_fallback_summary(const pipeline::LabelingFallback& f) {
+  if (!f.tried) return {};
+  const std::string first = fmt::format("the first labeling's mesh ({} charts) was {:.3f} % of the diagonal from the "
+                                        "input",
+                                        f.charts_first, 100 * f.distance_first);
+  return f.kept ? fmt::format("labeling fallback: {}; the chain ran again with compactness {:.3g} ({} charts): {:.3f} % "
+                              "(the stages above)\n",
+                              first, f.compactness, f.charts_retry, 100 * f.distance_retry)
+                : fmt::format("labeling fallback: {}; compactness {:.3g} was tried and not kept: {}\n", first,
+                              f.compactness, f.why_not);
+}
+
 nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
   nlohmann::json stages = nlohmann::json::array();
   for (const auto& s : r.stages) stages.push_back({{"stage", s.name}, {"ok", s.ok}, {"seconds", s.seconds}});
@@ -88,6 +114,7 @@ nlohmann::json to_json(const pipeline::RunResult& r, const RunCliOptions& o) {
       {"construct_fallback", r.construct_fallback.empty()
                                  ? nlohmann::json(nullptr)
                                  : nlohmann::json({{"taken", r.construct_fallback}, {"why", r.construct_fallback_why}})},
+      {"labeling_fallback", labeling_fallback_json(r.labeling_fallback)},
       {"surface_decimated",
        r.decimated_triangles > 0
            ? nlohmann::json({{"triangles_before", r.input_triangles}, {"triangles_after", r.decimated_triangles}})
@@ -224,7 +251,7 @@ std::string summary_table(const pipeline::RunResult& r) {
     t += fmt::format("| {} | {:.2f} | {} |\n", s.name, s.seconds, what);
   }
   t += fmt::format("| total | {:.2f} | peak memory {:.0f} MiB |\n", r.total_seconds, r.peak_memory_mib);
-  return t;
+  return t + labeling_fallback_summary(r.labeling_fallback);
 }
 
 void run_run(RunCliOptions o) {
@@ -232,6 +259,7 @@ void run_run(RunCliOptions o) {
   o.run.simplify = !o.no_simplify;
   o.run.optimize = !o.no_optimize;
   o.run.wrap_fallback = !o.no_wrap_fallback;
+  o.run.labeling_fallback = !o.no_labeling_fallback;
   if (!o.chamber.empty()) {
     if (!o.run.fabricate) throw core::InputError("--chamber needs --fabricate");
     o.run.fabricate_options.chamber = {o.chamber[0], o.chamber[1], o.chamber[2]};
@@ -332,6 +360,11 @@ void register_run(CLI::App& app) {
                 "When no construction attempt can be certified, fail instead of constructing the surface's alpha "
                 "wrap (which closes slits and gaps thinner than the tets; the mesh then fits the wrap, and the "
                 "report also gives its distance to the surface as read)");
+  sub->add_flag("--no-labeling-fallback", opts->no_labeling_fallback,
+                "When the final mesh stays farther from the input than the Hausdorff bound (0.9 % of the input's bounding-box diagonal), keep it "
+                "instead of running the chain again with a more faithful labeling (a third of --compactness, one "
+                "attempt), whose mesh is kept when it is valid and closer: a labeling whose charts swallow a thin "
+                "part (a flipper, an ear) leaves it no hexes of its own");
   sub->add_flag("--fabricate", opts->run.fabricate,
                 "Also cut the input solid into parts along the simplified map (thesis ch. 6): "
                 "parts/ with part_NN.stl, parts.3mf, exploded.ply/.vtk, parts.json");
@@ -364,7 +397,7 @@ void register_run(CLI::App& app) {
                              "simplify-step-2", "simplify-step-3", "optimize-step-1", "optimize-step-2",
                              "optimize-step-3", "optimize-step-4", "optimize-step-5", "optimize-crossing-1",
                              "optimize-crossing-2", "optimize-distance-1",
-                             "optimize-distance-2", "optimize-distance-3", "pad", "construct-unwrapped", "construct-attempt-1"}))
+                             "optimize-distance-2", "optimize-distance-3", "pad", "construct-unwrapped", "construct-attempt-1", "final-distance"}))
       ->group("");
   opts->command = sub;
   std::vector<CLI::Option*> expert = add_repair_options(*sub, opts->run.repair);

@@ -8,6 +8,7 @@
 #include "io/polycube_map_io.h"
 #include "mesh/grid.h"
 #include "pipeline/input.h"
+#include "pipeline/labeling_fallback.h"
 #include "pipeline/optimize_stage.h"
 #include "pipeline/parts_output.h"
 #include "pipeline/stage_steps.h"
@@ -184,8 +185,10 @@ double RunResult::seconds(const std::string& stage) const {
   return 0.0;
 }
 
-RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem::path& out_dir,
-                       const RunOptions& o) {
+namespace {
+
+//! The chain, stage by stage, without the labeling fallback.
+RunResult run_chain(const std::filesystem::path& input, const std::filesystem::path& out_dir, const RunOptions& o) {
   namespace fs = std::filesystem;
   const core::Stopwatch clock;
   RunResult r;
@@ -194,7 +197,8 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
                             injected_steps(o.inject_failure, "simplify-step-") > 0 ||
                             injected_steps(o.inject_failure, "optimize-step-") > 0 ||
                             injected_steps(o.inject_failure, "optimize-crossing-") > 0 ||
-                            injected_steps(o.inject_failure, "optimize-distance-") > 0;
+                            injected_steps(o.inject_failure, "optimize-distance-") > 0 ||
+                            o.inject_failure == "final-distance";
   if (!o.inject_failure.empty() && !injects_step &&
       std::find(std::begin(kStages), std::end(kStages), o.inject_failure) == std::end(kStages))
     throw core::InputError("inject_failure: no stage named " + o.inject_failure);
@@ -385,6 +389,15 @@ RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem
   rusage usage{};
   if (getrusage(RUSAGE_SELF, &usage) == 0) r.peak_memory_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;
   return r;
+}
+
+}  // namespace
+
+RunResult run_pipeline(const std::filesystem::path& input, const std::filesystem::path& out_dir,
+                       const RunOptions& o) {
+  RunResult first = run_chain(input, out_dir, o);
+  if (!wants_faithful_labeling(first, o)) return first;
+  return with_faithful_labeling(input, out_dir, o, std::move(first), run_chain);
 }
 
 }  // namespace polycube::pipeline

@@ -81,6 +81,10 @@ struct RunOptions {
   //! also plan at λ = 0 and keep the padded mesh with the higher mSJ (stage_steps.h,
   //! pad_with_fewest_hexes; `--padding-lambda auto`)
   bool padding_fewest_too = true;
+  //! When the final mesh of a completed chain is farther from the input than
+  //! optimize_options.hausdorff_bound, run the chain again with a more faithful labeling and keep
+  //! the closer valid mesh (pipeline/labeling_fallback.h; `--no-labeling-fallback` turns it off)
+  bool labeling_fallback = true;
   //! Mesh the map (stages hexmesh, optimize, pad, quality); false: the map only (and its parts).
   bool hexmesh = true;
   //! Cut the input solid into parts along the (simplified) map: stage "fabricate", right after
@@ -102,8 +106,9 @@ struct RunOptions {
   //! wrap fallback); "construct-attempt-1": its first deformed attempt counts as failed (the next
   //! planned attempt, or on a surface with gaps the wrap closes, the wrap); "optimize-distance-N": the first N valid meshes count as too far from the input (1: the
   //! first finer grid of step 5 is kept; 2: it is not closer, so the next one is tried (with
-  //! refine_far; without it the first mesh stays); 3 with refine_far: the first mesh stays).
-  //! Empty (the default): never.
+  //! refine_far; without it the first mesh stays); 3 with refine_far: the first mesh stays);
+  //! "final-distance": the completed chain's mesh counts as beyond the distance bound (the
+  //! labeling fallback). Empty (the default): never.
   std::string inject_failure;
 };
 
@@ -112,6 +117,16 @@ struct StageRecord {
   std::string name;
   double seconds = 0.0;
   bool ok = false;
+};
+
+//! The chain's retry with a more faithful labeling (pipeline/labeling_fallback.h).
+struct LabelingFallback {
+  bool tried = false;
+  bool kept = false;           //!< the retry's result is the run's
+  double compactness = -1;     //!< the retry's labeling compactness
+  int charts_first = -1, charts_retry = -1;          //!< charts of each labeling (-1: not constructed)
+  double distance_first = -1, distance_retry = -1;  //!< final meshes to the input / its diagonal (-1: none)
+  std::string why_not;         //!< why the retry was not kept (empty when kept)
 };
 
 //! What the chain did. When a stage failed, `failed_stage` names it, `failure` gives the
@@ -190,6 +205,7 @@ struct RunResult {
   int final_domains = -1;              //!< #D of the final hex mesh
   double hausdorff_relative = -1;      //!< final boundary vs the input surface (the wrap after the wrap fallback), / its bbox diagonal
   double hausdorff_unwrapped_relative = -1;  //!< after the wrap fallback: final boundary vs the surface as read
+  LabelingFallback labeling_fallback;  //!< not tried unless the first mesh missed the distance bound
   double total_seconds = 0.0;
   double peak_memory_mib = -1;         //!< peak resident memory of the process (getrusage)
 

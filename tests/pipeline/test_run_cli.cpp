@@ -440,6 +440,38 @@ TEST(RunCli, AnUncertifiedSurfaceFallsBackToItsAlphaWrapAndTheReportSaysSo) {
   EXPECT_TRUE(read_report(dir / "off")["construct_fallback"].is_null());
 }
 
+// A mesh beyond the distance bound (counted so by `--inject-failure final-distance`) is made
+// again with a labeling of a third of the compactness, in a folder of its own whose files then
+// replace the first chain's; `--no-labeling-fallback` keeps the first mesh.
+TEST(RunCli, AMeshBeyondTheDistanceBoundIsMadeAgainWithAMoreFaithfulLabelingAndTheReportSaysSo) {
+  const fs::path dir = temp_dir("labeling_fallback");
+  write_surface(dir / "box.obj", test::make_box(1.0, 1.0, 1.0, 2));
+  const CliResult r = run(dir / "box.obj", dir / "out", "--hexes 200 --padding none --inject-failure final-distance");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = read_report(dir / "out");
+  ASSERT_TRUE(j["labeling_fallback"].is_object()) << j["labeling_fallback"];
+  EXPECT_TRUE(j["labeling_fallback"]["kept"].get<bool>());
+  EXPECT_DOUBLE_EQ(j["labeling_fallback"]["compactness"].get<double>(), 0.3);
+  EXPECT_TRUE(j["labeling_fallback"]["why_not"].is_null());
+  EXPECT_EQ(j["construct_attempt"], "compactness 0.3");
+  EXPECT_EQ(j["construct_attempts"], 1);
+  EXPECT_DOUBLE_EQ(j["labeling_fallback"]["hausdorff_relative_retry"].get<double>(),
+                   j["final"]["hausdorff_relative"].get<double>());
+  EXPECT_NE(r.out.find("labeling fallback"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("more faithful labeling"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out" / "faithful-labeling"));
+  for (const auto& f : j["files"]) EXPECT_TRUE(fs::exists(dir / "out" / f.get<std::string>())) << f;
+  expect_valid_map(dir / "out" / "construct", j);
+  EXPECT_EQ(j["final"]["inverted"], 0);
+
+  const CliResult off =
+      run(dir / "box.obj", dir / "off", "--hexes 200 --padding none --no-labeling-fallback --inject-failure final-distance");
+  ASSERT_EQ(off.exit_code, 0) << off.err;
+  const auto k = read_report(dir / "off");
+  EXPECT_TRUE(k["labeling_fallback"].is_null());
+  EXPECT_EQ(k["construct_attempt"], "compactness 1");
+}
+
 // A surface with a slit narrower than the wrap's ball (a square plate with a slot cut from one
 // side): when its first attempt fails (counted so by `--inject-failure construct-attempt-1`),
 // the wrap is constructed next, before the plan's other attempts. The same failure on a box,

@@ -1,0 +1,112 @@
+#include "pipeline/labeling_fallback.h"
+
+#include "core/errors.h"
+#include "core/log.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <limits>
+#include <system_error>
+#include <utility>
+
+namespace polycube::pipeline {
+
+namespace {
+
+//! The retry's folder, inside the output folder (removed once the retry is decided).
+constexpr const char* kRetryFolder = "faithful-labeling";
+
+//! The options of the retry: a third of the compactness, one construction attempt, no wrap.
+RunOptions faithful_options(const RunOptions& o) {
+  RunOptions f = o;
+  f.construct.labeling.compactness = o.construct.labeling.compactness * kFaithfulFactor;
+  f.construct.retry_compactness_factors.clear();
+  f.construct.predeform_retry = 0;
+  f.wrap_fallback = false;
+  f.labeling_fallback = false;
+  f.inject_failure.clear();
+  return f;
+}
+
+//! Remove the files `files` lists (never `input`, which may be an earlier run's output).
+void remove_files(const std::vector<std::string>& files, const std::filesystem::path& input) {
+  std::error_code ec;
+  for (const std::string& f : files)
+    if (!std::filesystem::equivalent(f, input, ec)) std::filesystem::remove(f, ec);
+}
+
+//! Move the retry's files from `from` into `to` (same layout); their new paths replace the old.
+void move_files(std::vector<std::string>& files, const std::filesystem::path& from, const std::filesystem::path& to) {
+  namespace fs = std::filesystem;
+  for (std::string& f : files) {
+    const fs::path dest = to / fs::path(f).lexically_relative(from);
+    std::error_code ec;
+    fs::create_directories(dest.parent_path(), ec);
+    fs::rename(f, dest, ec);
+    if (ec)
+      throw core::OutputError(fmt::format("cannot move {} to {}: {}", f, dest.string(), ec.message()));
+    f = dest.string();
+  }
+}
+
+//! Why the retry's result `retry` does not replace the first, `first_distance` from the input
+//! (empty: it does).
+std::string why_not_kept(double first_distance, const RunResult& retry) {
+  if (!retry.ok()) return fmt::format("stage {} failed: {}", retry.failed_stage, retry.failure);
+  if (retry.hausdorff_relative >= first_distance)
+    return fmt::format("{:.3f} % of the diagonal from the input, not closer", 100 * retry.hausdorff_relative);
+  return {};
+}
+
+}  // namespace
+
+bool wants_faithful_labeling(const RunResult& first, const RunOptions& o) {
+  if (!o.labeling_fallback || !first.ok() || !first.construct_fallback.empty() || first.hausdorff_relative < 0)
+    return false;
+  const double bound = o.optimize_options.hausdorff_bound;
+  return o.inject_failure == "final-distance" || (bound > 0 && first.hausdorff_relative > bound);
+}
+
+RunResult with_faithful_labeling(const std::filesystem::path& input, const std::filesystem::path& out_dir,
+                                 const RunOptions& o, RunResult first, const Chain& chain) {
+  namespace fs = std::filesystem;
+  const RunOptions f = faithful_options(o);
+  LabelingFallback record;
+  record.tried = true;
+  record.compactness = f.construct.labeling.compactness;
+  record.charts_first = first.charts;
+  record.distance_first = first.hausdorff_relative;
+  core::logger().warn("run: the mesh is {:.3f} % of the diagonal from the input (bound {:.3f} %) with a labeling of {} "
+                      "charts; running the chain again with a more faithful labeling (compactness {:.3g}), which "
+                      "gives thin parts charts of their own",
+                      100 * first.hausdorff_relative, 100 * o.optimize_options.hausdorff_bound, first.charts,
+                      record.compactness);
+  const fs::path folder = out_dir / kRetryFolder;
+  RunResult retry = chain(input, folder, f);
+  record.distance_retry = retry.ok() ? retry.hausdorff_relative : -1.0;
+  record.charts_retry = retry.charts;
+  // An injected distance stands for a first mesh beyond any retry's.
+  const bool injected = o.inject_failure == "final-distance";
+  record.why_not = why_not_kept(injected ? std::numeric_limits<double>::infinity() : first.hausdorff_relative, retry);
+  std::error_code ec;
+  if (!record.why_not.empty()) {
+    fs::remove_all(folder, ec);
+    core::logger().warn("run: the more faithful labeling is not kept ({}); keeping the first mesh", record.why_not);
+    first.total_seconds += retry.total_seconds;
+    first.labeling_fallback = record;
+    return first;
+  }
+  remove_files(first.files, input);
+  move_files(retry.files, folder, out_dir);
+  fs::remove_all(folder, ec);
+  core::logger().info("run: the more faithful labeling is kept: {:.3f} % -> {:.3f} % of the diagonal from the input",
+                      100 * record.distance_first, 100 * record.distance_retry);
+  record.kept = true;
+  retry.total_seconds += first.total_seconds;
+  retry.peak_memory_mib = std::max(retry.peak_memory_mib, first.peak_memory_mib);
+  retry.labeling_fallback = record;
+  return retry;
+}
+
+}  // namespace polycube::pipeline

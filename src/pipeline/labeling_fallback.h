@@ -1,0 +1,44 @@
+#pragma once
+//! \file labeling_fallback.h
+//! \brief The chain once more with a more faithful labeling, when its mesh misses the input.
+//!
+//! Where a labeling's compactness merges the sides of a thin part (a flipper, an ear, a fluke)
+//! into the charts around it, the polycube has no protrusion there: the map squeezes the part
+//! into a plate of the polycube a fraction of a hex thick, and no grid of the polycube follows
+//! it, however fine (the optimize stage's finer grids stay beyond the bound). The labeling's
+//! compactness, not the hex count, is then what decides: a third of it gives such parts their
+//! own charts (bench/RESULTS.md, stop 62: a whale whose flippers and fluke are plates, 1.81 %
+//! of the diagonal from its surface with 6 charts, 0.74 % with 10). So when the final mesh of a
+//! chain that completed is farther from the input than optimize_options.hausdorff_bound, the
+//! chain runs again with compactness × kFaithfulFactor, one construction attempt (the others
+//! of the plan are less faithful) and no wrap fallback, in a folder of its own; its result
+//! replaces the first when it completes with a valid mesh closer to the input. The report says
+//! what was tried and what was kept (RunResult::labeling_fallback).
+
+#include "pipeline/pipeline.h"
+
+#include <filesystem>
+#include <functional>
+
+namespace polycube::pipeline {
+
+//! The compactness of the retry, as a share of the first chain's.
+inline constexpr double kFaithfulFactor = 0.3;
+
+//! The chain of run_pipeline() without this fallback: (input, output folder, options).
+using Chain = std::function<RunResult(const std::filesystem::path&, const std::filesystem::path&, const RunOptions&)>;
+
+//! Whether `first` (the chain's result with options `o`) gets the retry: it completed, its mesh
+//! is beyond the bound (or the hidden injection "final-distance" says so), its map is the
+//! input's own (not the alpha wrap of the construct fallback: the retry would compare
+//! distances to different surfaces), and the fallback is on.
+bool wants_faithful_labeling(const RunResult& first, const RunOptions& o);
+
+//! The retry (see the file comment) into out_dir/faithful-labeling, then that folder's files
+//! moved into out_dir when its result is kept (the first chain's files removed first), or the
+//! folder removed when not. Returns the kept result, with RunResult::labeling_fallback filled in
+//! and the seconds of both chains.
+RunResult with_faithful_labeling(const std::filesystem::path& input, const std::filesystem::path& out_dir,
+                                 const RunOptions& o, RunResult first, const Chain& chain);
+
+}  // namespace polycube::pipeline
