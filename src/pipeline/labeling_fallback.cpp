@@ -14,9 +14,6 @@ namespace polycube::pipeline {
 
 namespace {
 
-//! The retry's folder, inside the output folder (removed once the retry is decided).
-constexpr const char* kRetryFolder = "faithful-labeling";
-
 //! The options of the retry: a third of the compactness, one construction attempt, no wrap.
 RunOptions faithful_options(const RunOptions& o) {
   RunOptions f = o;

@@ -24,6 +24,9 @@ namespace polycube::pipeline {
 
 //! The compactness of the retry, as a share of the first chain's.
 inline constexpr double kFaithfulFactor = 0.3;
+//! The retry's folder, inside the output folder (removed once the retry is decided, and by the
+//! next run into the same folder when the retry was interrupted).
+inline constexpr const char* kRetryFolder = "faithful-labeling";
 
 //! The chain of run_pipeline() without this fallback: (input, output folder, options).
 using Chain = std::function<RunResult(const std::filesystem::path&, const std::filesystem::path&, const RunOptions&)>;

@@ -112,6 +112,11 @@ void clear_earlier_run(const std::filesystem::path& out_dir, const std::filesyst
     if (fs::exists(p, ec) && !fs::equivalent(p, input, ec)) removed += fs::remove(p, ec) ? 1 : 0;
   }
   removed += remove_earlier_parts(out_dir / "parts");
+  // An interrupted labeling fallback's folder (labeling_fallback.h), unless the input is in it.
+  const fs::path retry = out_dir / kRetryFolder;
+  const fs::path from_retry = fs::weakly_canonical(input, ec).lexically_relative(fs::weakly_canonical(retry, ec));
+  if (fs::exists(retry, ec) && (from_retry.empty() || *from_retry.begin() == ".."))
+    removed += static_cast<int>(fs::remove_all(retry, ec));
   if (removed > 0) core::logger().info("run: removed {} files of an earlier run in {}", removed, out_dir.string());
 }
 

@@ -464,8 +464,12 @@ TEST(RunCli, AMeshBeyondTheDistanceBoundIsMadeAgainWithAMoreFaithfulLabelingAndT
   expect_valid_map(dir / "out" / "construct", j);
   EXPECT_EQ(j["final"]["inverted"], 0);
 
+  // An interrupted retry's folder is removed by the next run into the same folder.
+  fs::create_directories(dir / "off" / "faithful-labeling");
+  std::ofstream(dir / "off" / "faithful-labeling" / "hex.mesh") << "stale";
   const CliResult off =
       run(dir / "box.obj", dir / "off", "--hexes 200 --padding none --no-labeling-fallback --inject-failure final-distance");
+  EXPECT_FALSE(fs::exists(dir / "off" / "faithful-labeling"));
   ASSERT_EQ(off.exit_code, 0) << off.err;
   const auto k = read_report(dir / "off");
   EXPECT_TRUE(k["labeling_fallback"].is_null());
