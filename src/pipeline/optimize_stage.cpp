@@ -244,7 +244,7 @@ class OptimizeStage {
     double far = injected ? std::numeric_limits<double>::infinity() : d.relative;
     if (far <= bound) return;
     why_ = injected ? std::string("injected distance")
-                    : fmt::format("{:.2f} % of the diagonal from the input (bound {:.2f} %)", 100 * far, 100 * bound);
+                    : fmt::format("{:.3f} % of the diagonal from the input (bound {:.3f} %)", 100 * far, 100 * bound);
     record_failure();
     const std::string first_name = r_.optimize_fallback;
     const Finer first{first_name, o_.target_hexes, {}, r_.iterations_optimize, false, first_name};
@@ -334,11 +334,11 @@ class OptimizeStage {
       const double closer = injected ? far : distance(finer);
       if (closer < far) {
         hex_ = std::move(finer);
-        why_ = fmt::format("{:.2f} % of the diagonal from the input", 100 * closer);
+        why_ = fmt::format("{:.3f} % of the diagonal from the input", 100 * closer);
         return closer;
       }
       why_ = injected ? std::string("injected distance")
-                      : fmt::format("{:.2f} % of the diagonal from the input, not closer", 100 * closer);
+                      : fmt::format("{:.3f} % of the diagonal from the input, not closer", 100 * closer);
     }
     record_failure();
     r_.optimize_tried.back() += " (not kept)";
