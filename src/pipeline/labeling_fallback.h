@@ -4,11 +4,10 @@
 //!
 //! Where a labeling's compactness merges the sides of a thin part (a flipper, an ear, a fluke)
 //! into the charts around it, the polycube has no protrusion there: the map squeezes the part
-//! into a plate of the polycube a fraction of a hex thick, and no grid of the polycube follows
-//! it, however fine (the optimize stage's finer grids stay beyond the bound). The labeling's
-//! compactness, not the hex count, is then what decides: a third of it gives such parts their
-//! own charts (bench/RESULTS.md, stop 62: a whale whose flippers and fluke are plates, 1.81 %
-//! of the diagonal from its surface with 6 charts, 0.74 % with 10). So when the final mesh of a
+//! into a plate of the polycube a fraction of a hex thick, and a grid of the polycube follows it
+//! only once its hexes are thinner than the plate (the optimize stage's grid with twice the
+//! hexes may stay beyond the bound). The labeling's compactness is then what decides: a third of
+//! it gives such parts their own charts (bench/RESULTS.md, stop 62: synthetic organic shapes). So when the final mesh of a
 //! chain that completed is farther from the input than optimize_options.hausdorff_bound, the
 //! chain runs again with compactness × kFaithfulFactor, one construction attempt (the others
 //! of the plan are less faithful) and no wrap fallback, in a folder of its own; its result
