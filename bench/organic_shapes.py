@@ -5,7 +5,8 @@ Each shape is a smooth union of anisotropic Gaussian blobs (a body with thin par
 flippers, a fluke, legs, arms), contoured at half height, smoothed, decimated and written as
 a closed genus-0 OBJ surface. Deterministic: the same files on every run.
 
-Usage: bench/organic_shapes.py OUT_DIR [NAME ...]   (names: bear whale cactus dog; default: all)
+Usage: bench/organic_shapes.py OUT_DIR [NAME ...]   (names: bear whale cactus dog starfish mug;
+default: all)
 Needs VTK's Python module (Debian: python3-vtk9, installed for CI by scripts/packages-ci.txt).
 Try them with: polycube run OUT_DIR/whale.obj --hexes 20000 -o out/whale
 """
@@ -52,6 +53,14 @@ SHAPES = {
             ((2.1, 0, 0.6), (0.35, 0.2, 0.2), None)]
            + [((sx * 1.0, sy * 0.35, -0.9), (0.18, 0.18, 0.7), None) for sx in (-1, 1) for sy in (-1, 1)]
            + [((-1.7, 0, 0.5), (0.4, 0.1, 0.1), rot_y(-0.6))],
+    # five flat arms around a flat centre
+    "starfish": [((0, 0, 0), (0.6, 0.6, 0.25), None)]
+                + [((1.0 * np.cos(a), 1.0 * np.sin(a), 0), (0.7, 0.22, 0.15), rot_z(-a))
+                   for a in np.linspace(0, 2 * np.pi, 5, endpoint=False)],
+    # a cup with a handle (genus 1): the handle a ring of small blobs
+    "mug": [((0, 0, 0), (0.8, 0.8, 1.0), None)]
+           + [((0.75 + 0.6 * np.cos(a), 0, 0.6 * np.sin(a)), (0.14, 0.14, 0.14), None)
+              for a in np.linspace(-np.pi / 2, np.pi / 2, 15)],
 }
 
 SAMPLES = 120        # field samples per axis
