@@ -75,11 +75,14 @@ double plan_seconds(const pipeline::RunResult& r) {
 nlohmann::json labeling_fallback_json(const pipeline::LabelingFallback& f) {
   if (!f.tried) return nullptr;
   return {{"kept", f.kept},
+          {"reason", f.reason},
           {"compactness", f.compactness},
           {"charts_first", known(f.charts_first)},
           {"charts_retry", known(f.charts_retry)},
           {"hausdorff_relative_first", known(f.distance_first)},
           {"hausdorff_relative_retry", known(f.distance_retry)},
+          {"msj_first", known_sj(f.msj_first)},
+          {"msj_retry", known_sj(f.msj_retry)},
           {"why_not", f.why_not.empty() ? nlohmann::json(nullptr) : nlohmann::json(f.why_not)}};
 }
 
@@ -87,11 +90,11 @@ nlohmann::json labeling_fallback_json(const pipeline::LabelingFallback& f) {
 std::string labeling_fallback_summary(const pipeline::LabelingFallback& f) {
   if (!f.tried) return {};
   const std::string first = fmt::format("the first labeling's mesh ({} charts) was {:.3f} % of the diagonal from the "
-                                        "input",
-                                        f.charts_first, 100 * f.distance_first);
-  return f.kept ? fmt::format("labeling fallback: {}; the chain ran again with compactness {:.3g} ({} charts): {:.3f} % "
-                              "(the stages above)\n",
-                              first, f.compactness, f.charts_retry, 100 * f.distance_retry)
+                                        "input, mSJ {:.3f}",
+                                        f.charts_first, 100 * f.distance_first, f.msj_first);
+  return f.kept ? fmt::format("labeling fallback: {}; the chain ran again with compactness {:.3g} ({} charts): {:.3f} %, "
+                              "mSJ {:.3f} (the stages above)\n",
+                              first, f.compactness, f.charts_retry, 100 * f.distance_retry, f.msj_retry)
                 : fmt::format("labeling fallback: {}; compactness {:.3g} was tried and not kept: {}\n", first,
                               f.compactness, f.why_not);
 }
@@ -361,10 +364,11 @@ void register_run(CLI::App& app) {
                 "wrap (which closes slits and gaps thinner than the tets; the mesh then fits the wrap, and the "
                 "report also gives its distance to the surface as read)");
   sub->add_flag("--no-labeling-fallback", opts->no_labeling_fallback,
-                "When the final mesh stays farther from the input than the Hausdorff bound (0.9 % of the input's bounding-box diagonal), keep it "
-                "instead of running the chain again with a more faithful labeling (a third of --compactness, one "
-                "attempt), whose mesh is kept when it is valid and closer: a labeling whose charts swallow a thin "
-                "part (a flipper, an ear) leaves it no hexes of its own");
+                "When the final mesh stays farther from the input than the Hausdorff bound (0.9 % of the input's "
+                "bounding-box diagonal), or its minimum scaled Jacobian is below 0.1, keep it instead of running the "
+                "chain again with a more faithful labeling (a third of --compactness, one attempt), whose mesh is kept "
+                "when it is valid and closer (or, for the mSJ, within the bound and higher): a labeling whose charts "
+                "swallow a thin part (a flipper, an ear, a leg) leaves it no hexes of its own");
   sub->add_flag("--fabricate", opts->run.fabricate,
                 "Also cut the input solid into parts along the simplified map (thesis ch. 6): "
                 "parts/ with part_NN.stl, parts.3mf, exploded.ply/.vtk, parts.json");
@@ -397,7 +401,7 @@ void register_run(CLI::App& app) {
                              "simplify-step-2", "simplify-step-3", "optimize-step-1", "optimize-step-2",
                              "optimize-step-3", "optimize-step-4", "optimize-step-5", "optimize-crossing-1",
                              "optimize-crossing-2", "optimize-distance-1",
-                             "optimize-distance-2", "optimize-distance-3", "pad", "construct-unwrapped", "construct-attempt-1", "final-distance"}))
+                             "optimize-distance-2", "optimize-distance-3", "pad", "construct-unwrapped", "construct-attempt-1", "final-distance", "final-quality"}))
       ->group("");
   opts->command = sub;
   std::vector<CLI::Option*> expert = add_repair_options(*sub, opts->run.repair);

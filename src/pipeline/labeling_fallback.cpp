@@ -47,12 +47,33 @@ void move_files(std::vector<std::string>& files, const std::filesystem::path& fr
   }
 }
 
-//! Why the retry's result `retry` does not replace the first, `first_distance` from the input
-//! (empty: it does).
-std::string why_not_kept(double first_distance, const RunResult& retry) {
+//! Why the first mesh gets the retry: "distance" (beyond the bound), "quality" (an mSJ below
+//! kPoorMinSJ while within it), or empty (no retry). The hidden injections "final-distance" and
+//! "final-quality" stand for a first mesh beyond any retry's distance or below any retry's mSJ.
+std::string retry_reason(const RunResult& first, const RunOptions& o) {
+  const double bound = o.optimize_options.hausdorff_bound;
+  if (o.inject_failure == "final-distance" || (bound > 0 && first.hausdorff_relative > bound)) return "distance";
+  if (o.inject_failure == "final-quality" || (first.msj > -1.5 && first.msj < kPoorMinSJ)) return "quality";
+  return {};
+}
+
+//! Why the retry's result `retry` does not replace `first` (empty: it does): it must be valid,
+//! and closer to the input when the first was beyond the bound; within the bound and higher in
+//! mSJ when the first was poor.
+std::string why_not_kept(const RunResult& first, const RunResult& retry, const std::string& reason,
+                         const RunOptions& o) {
   if (!retry.ok()) return fmt::format("stage {} failed: {}", retry.failed_stage, retry.failure);
-  if (retry.hausdorff_relative >= first_distance)
-    return fmt::format("{:.3f} % of the diagonal from the input, not closer", 100 * retry.hausdorff_relative);
+  const bool injected = o.inject_failure == "final-" + reason;
+  if (reason == "distance") {
+    const double first_distance = injected ? std::numeric_limits<double>::infinity() : first.hausdorff_relative;
+    if (retry.hausdorff_relative >= first_distance)
+      return fmt::format("{:.3f} % of the diagonal from the input, not closer", 100 * retry.hausdorff_relative);
+    return {};
+  }
+  const double bound = o.optimize_options.hausdorff_bound;
+  if (bound > 0 && retry.hausdorff_relative > bound)
+    return fmt::format("{:.3f} % of the diagonal from the input, beyond the bound", 100 * retry.hausdorff_relative);
+  if (retry.msj <= (injected ? -1.0 : first.msj)) return fmt::format("mSJ {:.3f}, not higher", retry.msj);
   return {};
 }
 
@@ -61,8 +82,7 @@ std::string why_not_kept(double first_distance, const RunResult& retry) {
 bool wants_faithful_labeling(const RunResult& first, const RunOptions& o) {
   if (!o.labeling_fallback || !first.ok() || !first.construct_fallback.empty() || first.hausdorff_relative < 0)
     return false;
-  const double bound = o.optimize_options.hausdorff_bound;
-  return o.inject_failure == "final-distance" || (bound > 0 && first.hausdorff_relative > bound);
+  return !retry_reason(first, o).empty();
 }
 
 RunResult with_faithful_labeling(const std::filesystem::path& input, const std::filesystem::path& out_dir,
@@ -71,21 +91,22 @@ RunResult with_faithful_labeling(const std::filesystem::path& input, const std::
   const RunOptions f = faithful_options(o);
   LabelingFallback record;
   record.tried = true;
+  record.reason = retry_reason(first, o);
   record.compactness = f.construct.labeling.compactness;
   record.charts_first = first.charts;
   record.distance_first = first.hausdorff_relative;
-  core::logger().warn("run: the mesh is {:.3f} % of the diagonal from the input (bound {:.3f} %) with a labeling of {} "
-                      "charts; running the chain again with a more faithful labeling (compactness {:.3g}), which "
-                      "gives thin parts charts of their own",
-                      100 * first.hausdorff_relative, 100 * o.optimize_options.hausdorff_bound, first.charts,
-                      record.compactness);
+  record.msj_first = first.msj;
+  core::logger().warn("run: the mesh is {:.3f} % of the diagonal from the input (bound {:.3f} %), mSJ {:.3f}, with a "
+                      "labeling of {} charts; running the chain again with a more faithful labeling (compactness "
+                      "{:.3g}), which gives thin parts charts of their own",
+                      100 * first.hausdorff_relative, 100 * o.optimize_options.hausdorff_bound, first.msj,
+                      first.charts, record.compactness);
   const fs::path folder = out_dir / kRetryFolder;
   RunResult retry = chain(input, folder, f);
   record.distance_retry = retry.ok() ? retry.hausdorff_relative : -1.0;
+  record.msj_retry = retry.ok() ? retry.msj : -2.0;
   record.charts_retry = retry.charts;
-  // An injected distance stands for a first mesh beyond any retry's.
-  const bool injected = o.inject_failure == "final-distance";
-  record.why_not = why_not_kept(injected ? std::numeric_limits<double>::infinity() : first.hausdorff_relative, retry);
+  record.why_not = why_not_kept(first, retry, record.reason, o);
   std::error_code ec;
   if (!record.why_not.empty()) {
     fs::remove_all(folder, ec);
@@ -97,8 +118,9 @@ RunResult with_faithful_labeling(const std::filesystem::path& input, const std::
   remove_files(first.files, input);
   move_files(retry.files, folder, out_dir);
   fs::remove_all(folder, ec);
-  core::logger().info("run: the more faithful labeling is kept: {:.3f} % -> {:.3f} % of the diagonal from the input",
-                      100 * record.distance_first, 100 * record.distance_retry);
+  core::logger().info("run: the more faithful labeling is kept: {:.3f} % -> {:.3f} % of the diagonal from the input, "
+                      "mSJ {:.3f} -> {:.3f}",
+                      100 * record.distance_first, 100 * record.distance_retry, record.msj_first, record.msj_retry);
   record.kept = true;
   retry.total_seconds += first.total_seconds;
   retry.peak_memory_mib = std::max(retry.peak_memory_mib, first.peak_memory_mib);

@@ -11,8 +11,10 @@
 //! chain that completed is farther from the input than optimize_options.hausdorff_bound, the
 //! chain runs again with compactness × kFaithfulFactor, one construction attempt (the others
 //! of the plan are less faithful) and no wrap fallback, in a folder of its own; its result
-//! replaces the first when it completes with a valid mesh closer to the input. The report says
-//! what was tried and what was kept (RunResult::labeling_fallback).
+//! replaces the first when it completes with a valid mesh closer to the input. A squeezed part
+//! within the bound shows as hexes nearly flat: a first mesh of an mSJ below kPoorMinSJ gets
+//! the same retry, kept when valid, within the bound and higher in mSJ. The report says what
+//! was tried and what was kept (RunResult::labeling_fallback).
 
 #include "pipeline/pipeline.h"
 
@@ -23,6 +25,9 @@ namespace polycube::pipeline {
 
 //! The compactness of the retry, as a share of the first chain's.
 inline constexpr double kFaithfulFactor = 0.3;
+//! A first mesh of an mSJ below this (hexes nearly flat) gets the retry too; the shared shapes'
+//! meshes are all above it (bench/RESULTS.md), the squeezed legs of a synthetic dog below.
+inline constexpr double kPoorMinSJ = 0.1;
 //! The retry's folder, inside the output folder (removed once the retry is decided, and by the
 //! next run into the same folder when the retry was interrupted).
 inline constexpr const char* kRetryFolder = "faithful-labeling";
@@ -31,7 +36,8 @@ inline constexpr const char* kRetryFolder = "faithful-labeling";
 using Chain = std::function<RunResult(const std::filesystem::path&, const std::filesystem::path&, const RunOptions&)>;
 
 //! Whether `first` (the chain's result with options `o`) gets the retry: it completed, its mesh
-//! is beyond the bound (or the hidden injection "final-distance" says so), its map is the
+//! is beyond the bound or poor in mSJ (or the hidden injection "final-distance" or
+//! "final-quality" says so), its map is the
 //! input's own (not the alpha wrap of the construct fallback: the retry would compare
 //! distances to different surfaces), and the fallback is on.
 bool wants_faithful_labeling(const RunResult& first, const RunOptions& o);

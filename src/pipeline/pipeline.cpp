@@ -203,7 +203,7 @@ RunResult run_chain(const std::filesystem::path& input, const std::filesystem::p
                             injected_steps(o.inject_failure, "optimize-step-") > 0 ||
                             injected_steps(o.inject_failure, "optimize-crossing-") > 0 ||
                             injected_steps(o.inject_failure, "optimize-distance-") > 0 ||
-                            o.inject_failure == "final-distance";
+                            o.inject_failure == "final-distance" || o.inject_failure == "final-quality";
   if (!o.inject_failure.empty() && !injects_step &&
       std::find(std::begin(kStages), std::end(kStages), o.inject_failure) == std::end(kStages))
     throw core::InputError("inject_failure: no stage named " + o.inject_failure);

@@ -82,8 +82,9 @@ struct RunOptions {
   //! pad_with_fewest_hexes; `--padding-lambda auto`)
   bool padding_fewest_too = true;
   //! When the final mesh of a completed chain is farther from the input than
-  //! optimize_options.hausdorff_bound, run the chain again with a more faithful labeling and keep
-  //! the closer valid mesh (pipeline/labeling_fallback.h; `--no-labeling-fallback` turns it off)
+  //! optimize_options.hausdorff_bound, or its mSJ is nearly 0, run the chain again with a more
+  //! faithful labeling and keep the better valid mesh (pipeline/labeling_fallback.h;
+  //! `--no-labeling-fallback` turns it off)
   bool labeling_fallback = true;
   //! Mesh the map (stages hexmesh, optimize, pad, quality); false: the map only (and its parts).
   bool hexmesh = true;
@@ -107,8 +108,8 @@ struct RunOptions {
   //! planned attempt, or on a surface with gaps the wrap closes, the wrap); "optimize-distance-N": the first N valid meshes count as too far from the input (1: the
   //! first finer grid of step 5 is kept; 2: it is not closer, so the next one is tried (with
   //! refine_far; without it the first mesh stays); 3 with refine_far: the first mesh stays);
-  //! "final-distance": the completed chain's mesh counts as beyond the distance bound (the
-  //! labeling fallback). Empty (the default): never.
+  //! "final-distance" / "final-quality": the completed chain's mesh counts as beyond the
+  //! distance bound / poor in mSJ (the labeling fallback). Empty (the default): never.
   std::string inject_failure;
 };
 
@@ -122,10 +123,12 @@ struct StageRecord {
 //! The chain's retry with a more faithful labeling (pipeline/labeling_fallback.h).
 struct LabelingFallback {
   bool tried = false;
+  std::string reason;          //!< "distance" (beyond the bound) or "quality" (mSJ below kPoorMinSJ)
   bool kept = false;           //!< the retry's result is the run's
   double compactness = -1;     //!< the retry's labeling compactness
   int charts_first = -1, charts_retry = -1;          //!< charts of each labeling (-1: not constructed)
   double distance_first = -1, distance_retry = -1;  //!< final meshes to the input / its diagonal (-1: none)
+  double msj_first = -2, msj_retry = -2;            //!< final meshes' mSJ (-2: none)
   std::string why_not;         //!< why the retry was not kept (empty when kept)
 };
 

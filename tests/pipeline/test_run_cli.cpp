@@ -464,6 +464,18 @@ TEST(RunCli, AMeshBeyondTheDistanceBoundIsMadeAgainWithAMoreFaithfulLabelingAndT
   expect_valid_map(dir / "out" / "construct", j);
   EXPECT_EQ(j["final"]["inverted"], 0);
 
+  EXPECT_EQ(j["labeling_fallback"]["reason"], "distance");
+
+  // A mesh poor in mSJ (counted so) gets the same retry.
+  const CliResult poor = run(dir / "box.obj", dir / "poor", "--hexes 200 --padding none --inject-failure final-quality");
+  ASSERT_EQ(poor.exit_code, 0) << poor.err;
+  const auto q = read_report(dir / "poor");
+  ASSERT_TRUE(q["labeling_fallback"].is_object()) << q["labeling_fallback"];
+  EXPECT_EQ(q["labeling_fallback"]["reason"], "quality");
+  EXPECT_TRUE(q["labeling_fallback"]["kept"].get<bool>());
+  EXPECT_DOUBLE_EQ(q["labeling_fallback"]["msj_retry"].get<double>(), q["final"]["msj"].get<double>());
+  EXPECT_EQ(q["construct_attempt"], "compactness 0.3");
+
   // An interrupted retry's folder is removed by the next run into the same folder.
   fs::create_directories(dir / "off" / "faithful-labeling");
   std::ofstream(dir / "off" / "faithful-labeling" / "hex.mesh") << "stale";
