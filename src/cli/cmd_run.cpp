@@ -308,7 +308,8 @@ void register_run(CLI::App& app) {
              "(-> pad), "
              "with every intermediate result, report.json and a summary table. A stage that cannot reach a valid "
              "result tries its fallbacks first (other construction attempts, the surface's alpha wrap, fewer alignments, a stiffer boundary "
-             "barrier, padding, other griddings; a mesh too far from the input is gridded twice as fine), and the "
+             "barrier, padding, other griddings; a mesh too far from the input is gridded twice as fine, and one "
+             "still too far or nearly flat somewhere is made again with a more faithful labeling), and the "
              "summary says which one gave the result. A failing stage stops the chain: "
              "exit code 2 when the input file is at fault, 3 when the stage could not reach a valid result (the "
              "reason and the stage on stderr and in report.json; earlier results kept)");
@@ -366,7 +367,7 @@ void register_run(CLI::App& app) {
   sub->add_flag("--no-labeling-fallback", opts->no_labeling_fallback,
                 "When the final mesh stays farther from the input than the Hausdorff bound (0.9 % of the input's "
                 "bounding-box diagonal), or its minimum scaled Jacobian is below 0.1, keep it instead of running the "
-                "chain again with a more faithful labeling (a third of --compactness, one attempt), whose mesh is kept "
+                "chain again with a more faithful labeling (0.3 times --compactness, one attempt), whose mesh is kept "
                 "when it is valid and closer (or, for the mSJ, within the bound and higher): a labeling whose charts "
                 "swallow a thin part (a flipper, an ear, a leg) leaves it no hexes of its own");
   sub->add_flag("--fabricate", opts->run.fabricate,

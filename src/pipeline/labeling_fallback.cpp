@@ -14,7 +14,7 @@ namespace polycube::pipeline {
 
 namespace {
 
-//! The options of the retry: a third of the compactness, one construction attempt, no wrap.
+//! The options of the retry: 0.3 times the compactness, one construction attempt, no wrap.
 RunOptions faithful_options(const RunOptions& o) {
   RunOptions f = o;
   f.construct.labeling.compactness = o.construct.labeling.compactness * kFaithfulFactor;

@@ -6,12 +6,13 @@
 //! into the charts around it, the polycube has no protrusion there: the map squeezes the part
 //! into a plate of the polycube a fraction of a hex thick, and a grid of the polycube follows it
 //! only once its hexes are thinner than the plate (the optimize stage's grid with twice the
-//! hexes may stay beyond the bound). The labeling's compactness is then what decides: a third of
-//! it gives such parts their own charts (bench/RESULTS.md, stop 62: synthetic organic shapes). So when the final mesh of a
-//! chain that completed is farther from the input than optimize_options.hausdorff_bound, the
-//! chain runs again with compactness × kFaithfulFactor, one construction attempt (the others
-//! of the plan are less faithful) and no wrap fallback, in a folder of its own; its result
-//! replaces the first when it completes with a valid mesh closer to the input. A squeezed part
+//! hexes may stay beyond the bound). The labeling's compactness is then what decides: 0.3 times
+//! it gives such parts their own charts (bench/RESULTS.md, stop 62: synthetic organic shapes).
+//! So when the final mesh of a chain that completed is farther from the input than
+//! optimize_options.hausdorff_bound, the chain runs again with compactness × kFaithfulFactor,
+//! one construction attempt (the others of the plan are less faithful) and no wrap fallback,
+//! in a folder of its own; its result replaces the first when it completes with a valid mesh
+//! closer to the input. A squeezed part
 //! within the bound shows as hexes nearly flat: a first mesh of an mSJ below kPoorMinSJ gets
 //! the same retry, kept when valid, within the bound and higher in mSJ. The report says what
 //! was tried and what was kept (RunResult::labeling_fallback).
