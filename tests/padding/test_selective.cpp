@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <utility>
 
 namespace polycube {
 namespace {
@@ -189,13 +190,18 @@ TEST(BinaryProblem, ATowerIsPaddedStraightThroughAThinSlabAndClosedAtItsFootOnAT
     SCOPED_TRACE(slab);
     const core::HexMesh g = tower_on_slab(slab);
     const auto faces = core::unique_faces(g);
-    std::vector<std::uint8_t> hard(faces.num_faces(), 0);
-    for (int f = 0; f < faces.num_faces(); ++f) {
+    // The lowest and highest z of facet f's corners.
+    const auto z_range = [&](int f) {
       double low = 1e9, high = -1e9;
       for (int v : faces.faces[f]) {
         low = std::min(low, g.points[v].z());
         high = std::max(high, g.points[v].z());
       }
+      return std::pair{low, high};
+    };
+    std::vector<std::uint8_t> hard(faces.num_faces(), 0);
+    for (int f = 0; f < faces.num_faces(); ++f) {
+      const auto [low, high] = z_range(f);
       hard[f] = faces.is_boundary(f) && low >= slab && high > low ? 1 : 0;
     }
     ASSERT_EQ(test::count_set(hard), 96);
@@ -209,11 +215,7 @@ TEST(BinaryProblem, ATowerIsPaddedStraightThroughAThinSlabAndClosedAtItsFootOnAT
     for (int f = 0; f < faces.num_faces(); ++f) {
       if (!s.facets[f] || hard[f]) continue;
       EXPECT_FALSE(faces.is_boundary(f));
-      double low = 1e9, high = -1e9;
-      for (int v : faces.faces[f]) {
-        low = std::min(low, g.points[v].z());
-        high = std::max(high, g.points[v].z());
-      }
+      const auto [low, high] = z_range(f);
       if (tube) {
         EXPECT_LE(high, slab);  // a wall of the tube, in the slab
         EXPECT_LT(low, high);
