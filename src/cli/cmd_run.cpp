@@ -77,6 +77,7 @@ nlohmann::json labeling_fallback_json(const pipeline::LabelingFallback& f) {
   return {{"kept", f.kept},
           {"reason", f.reason},
           {"compactness", f.compactness},
+          {"failure_first", f.failure_first.empty() ? nlohmann::json(nullptr) : nlohmann::json(f.failure_first)},
           {"charts_first", known(f.charts_first)},
           {"charts_retry", known(f.charts_retry)},
           {"hausdorff_relative_first", known(f.distance_first)},
@@ -89,9 +90,11 @@ nlohmann::json labeling_fallback_json(const pipeline::LabelingFallback& f) {
 //! The summary's line on the labeling fallback (empty when not tried).
 std::string labeling_fallback_summary(const pipeline::LabelingFallback& f) {
   if (!f.tried) return {};
-  const std::string first = fmt::format("the first labeling's mesh ({} charts) was {:.3f} % of the diagonal from the "
-                                        "input, mSJ {:.3f}",
-                                        f.charts_first, 100 * f.distance_first, f.msj_first);
+  const std::string first =
+      f.failure_first.empty()
+          ? fmt::format("the first labeling's mesh ({} charts) was {:.3f} % of the diagonal from the input, mSJ {:.3f}",
+                        f.charts_first, 100 * f.distance_first, f.msj_first)
+          : fmt::format("the first labeling ({} charts) gave no valid mesh ({})", f.charts_first, f.failure_first);
   return f.kept ? fmt::format("labeling fallback: {}; the chain ran again with compactness {:.3g} ({} charts): {:.3f} %, "
                               "mSJ {:.3f} (the stages above)\n",
                               first, f.compactness, f.charts_retry, 100 * f.distance_retry, f.msj_retry)
@@ -365,11 +368,12 @@ void register_run(CLI::App& app) {
                 "wrap (which closes slits and gaps thinner than the tets; the mesh then fits the wrap, and the "
                 "report also gives its distance to the surface as read)");
   sub->add_flag("--no-labeling-fallback", opts->no_labeling_fallback,
-                "When the final mesh stays farther from the input than the Hausdorff bound (0.9 % of the input's "
-                "bounding-box diagonal), or its minimum scaled Jacobian is below 0.1, keep it instead of running the "
-                "chain again with a more faithful labeling (0.3 times --compactness, one attempt), whose mesh is kept "
-                "when it is valid and closer (or, for the mSJ, within the bound and higher): a labeling whose charts "
-                "swallow a thin part (a flipper, an ear, a leg) leaves it no hexes of its own");
+                "When the optimizer and its fallbacks leave hexes inverted, fail; when the final mesh stays farther "
+                "from the input than the Hausdorff bound (0.9 % of the input's bounding-box diagonal), or its minimum "
+                "scaled Jacobian is below 0.1, keep it. By default the chain then runs again with a more faithful "
+                "labeling (0.3 times --compactness, one attempt), whose mesh is kept when it is valid (and closer, or "
+                "for the mSJ within the bound and higher): a labeling whose charts swallow a thin part (a flipper, an "
+                "ear, a leg) leaves it no hexes of its own");
   sub->add_flag("--fabricate", opts->run.fabricate,
                 "Also cut the input solid into parts along the simplified map (thesis ch. 6): "
                 "parts/ with part_NN.stl, parts.3mf, exploded.ply/.vtk, parts.json");

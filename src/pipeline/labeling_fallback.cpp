@@ -47,10 +47,18 @@ void move_files(std::vector<std::string>& files, const std::filesystem::path& fr
   }
 }
 
-//! Why the first mesh gets the retry: "distance" (beyond the bound), "quality" (an mSJ below
-//! kPoorMinSJ while within it), or empty (no retry). The hidden injections "final-distance" and
-//! "final-quality" stand for a first mesh beyond any retry's distance or below any retry's mSJ.
+//! Why the first chain gets the retry: "optimize" (no valid mesh: the optimizer and its
+//! fallbacks, or the final check, left hexes inverted), "distance" (beyond the bound),
+//! "quality" (an mSJ below kPoorMinSJ while within it), or empty (no retry). The hidden
+//! injections "final-distance" and "final-quality" stand for a first mesh beyond any retry's
+//! distance or below any retry's mSJ; "optimize" (a stage's injected failure) for the first.
 std::string retry_reason(const RunResult& first, const RunOptions& o) {
+  if (!first.ok()) {
+    // Without the optimizer (--no-optimize) a gridded mesh with inverted hexes is what was asked for.
+    const bool no_valid_mesh = first.failed_stage == "optimize" || first.failed_stage == "quality";
+    return no_valid_mesh && o.optimize && !first.bad_input ? "optimize" : "";
+  }
+  if (first.hausdorff_relative < 0) return {};
   const double bound = o.optimize_options.hausdorff_bound;
   if (o.inject_failure == "final-distance" || (bound > 0 && first.hausdorff_relative > bound)) return "distance";
   if (o.inject_failure == "final-quality" || (first.msj > -1.5 && first.msj < kPoorMinSJ)) return "quality";
@@ -63,6 +71,7 @@ std::string retry_reason(const RunResult& first, const RunOptions& o) {
 std::string why_not_kept(const RunResult& first, const RunResult& retry, const std::string& reason,
                          const RunOptions& o) {
   if (!retry.ok()) return fmt::format("stage {} failed: {}", retry.failed_stage, retry.failure);
+  if (reason == "optimize") return {};  // a valid mesh, whatever its figures, against none
   const bool injected = o.inject_failure == "final-" + reason;
   if (reason == "distance") {
     const double first_distance = injected ? std::numeric_limits<double>::infinity() : first.hausdorff_relative;
@@ -80,8 +89,7 @@ std::string why_not_kept(const RunResult& first, const RunResult& retry, const s
 }  // namespace
 
 bool wants_faithful_labeling(const RunResult& first, const RunOptions& o) {
-  if (!o.labeling_fallback || !first.ok() || !first.construct_fallback.empty() || first.hausdorff_relative < 0)
-    return false;
+  if (!o.labeling_fallback || !first.construct_fallback.empty()) return false;
   return !retry_reason(first, o).empty();
 }
 
@@ -96,11 +104,14 @@ RunResult with_faithful_labeling(const std::filesystem::path& input, const std::
   record.charts_first = first.charts;
   record.distance_first = first.hausdorff_relative;
   record.msj_first = first.msj;
-  core::logger().warn("run: the mesh is {:.3f} % of the diagonal from the input (bound {:.3f} %), mSJ {:.3f}, with a "
-                      "labeling of {} charts; running the chain again with a more faithful labeling (compactness "
-                      "{:.3g}), which gives thin parts charts of their own",
-                      100 * first.hausdorff_relative, 100 * o.optimize_options.hausdorff_bound, first.msj,
-                      first.charts, record.compactness);
+  record.failure_first = first.ok() ? std::string() : first.failed_stage + ": " + first.failure;
+  const std::string what =
+      first.ok() ? fmt::format("the mesh is {:.3f} % of the diagonal from the input (bound {:.3f} %), mSJ {:.3f}",
+                               100 * first.hausdorff_relative, 100 * o.optimize_options.hausdorff_bound, first.msj)
+                 : fmt::format("no valid mesh ({})", record.failure_first);
+  core::logger().warn("run: {}, with a labeling of {} charts; running the chain again with a more faithful labeling "
+                      "(compactness {:.3g}), which gives thin parts charts of their own",
+                      what, first.charts, record.compactness);
   const fs::path folder = out_dir / kRetryFolder;
   RunResult retry = chain(input, folder, f);
   record.distance_retry = retry.ok() ? retry.hausdorff_relative : -1.0;
@@ -118,9 +129,8 @@ RunResult with_faithful_labeling(const std::filesystem::path& input, const std::
   remove_files(first.files, input);
   move_files(retry.files, folder, out_dir);
   fs::remove_all(folder, ec);
-  core::logger().info("run: the more faithful labeling is kept: {:.3f} % -> {:.3f} % of the diagonal from the input, "
-                      "mSJ {:.3f} -> {:.3f}",
-                      100 * record.distance_first, 100 * record.distance_retry, record.msj_first, record.msj_retry);
+  core::logger().info("run: the more faithful labeling is kept: {:.3f} % of the diagonal from the input, mSJ {:.3f}",
+                      100 * record.distance_retry, record.msj_retry);
   record.kept = true;
   retry.total_seconds += first.total_seconds;
   retry.peak_memory_mib = std::max(retry.peak_memory_mib, first.peak_memory_mib);

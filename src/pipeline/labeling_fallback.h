@@ -1,6 +1,7 @@
 #pragma once
 //! \file labeling_fallback.h
-//! \brief The chain once more with a more faithful labeling, when its mesh misses the input.
+//! \brief The chain once more with a more faithful labeling, when its mesh is invalid or misses
+//! the input.
 //!
 //! Where a labeling's compactness merges the sides of a thin part (a flipper, an ear, a fluke)
 //! into the charts around it, the polycube has no protrusion there: the map squeezes the part
@@ -14,8 +15,10 @@
 //! in a folder of its own; its result replaces the first when it completes with a valid mesh
 //! closer to the input. A squeezed part
 //! within the bound shows as hexes nearly flat: a first mesh of an mSJ below kPoorMinSJ gets
-//! the same retry, kept when valid, within the bound and higher in mSJ. The report says what
-//! was tried and what was kept (RunResult::labeling_fallback).
+//! the same retry, kept when valid, within the bound and higher in mSJ. Squeezed thinner, the
+//! plate keeps hexes flat or inverted whatever the optimizer's fallbacks do (padding, a finer
+//! grid): a chain that ends at optimize without a valid mesh gets the retry too, kept when
+//! valid. The report says what was tried and what was kept (RunResult::labeling_fallback).
 
 #include "pipeline/pipeline.h"
 
@@ -36,9 +39,10 @@ inline constexpr const char* kRetryFolder = "faithful-labeling";
 //! The chain of run_pipeline() without this fallback: (input, output folder, options).
 using Chain = std::function<RunResult(const std::filesystem::path&, const std::filesystem::path&, const RunOptions&)>;
 
-//! Whether `first` (the chain's result with options `o`) gets the retry: it completed, its mesh
-//! is beyond the bound or poor in mSJ (or the hidden injection "final-distance" or
-//! "final-quality" says so), its map is the
+//! Whether `first` (the chain's result with options `o`) gets the retry: it failed at optimize
+//! (or at the final check of the mesh), or it completed and its mesh is beyond the bound or
+//! poor in mSJ (or the hidden injection "final-distance" or "final-quality" says so), its map is
+//! the
 //! input's own (not the alpha wrap of the construct fallback: the retry would compare
 //! distances to different surfaces), and the fallback is on.
 bool wants_faithful_labeling(const RunResult& first, const RunOptions& o);

@@ -81,9 +81,9 @@ struct RunOptions {
   //! also plan at λ = 0 and keep the padded mesh with the higher mSJ (stage_steps.h,
   //! pad_with_fewest_hexes; `--padding-lambda auto`)
   bool padding_fewest_too = true;
-  //! When the final mesh of a completed chain is farther from the input than
-  //! optimize_options.hausdorff_bound, or its mSJ is nearly 0, run the chain again with a more
-  //! faithful labeling and keep the better valid mesh (pipeline/labeling_fallback.h;
+  //! When the chain ends without a valid mesh (optimize), or its final mesh is farther from the
+  //! input than optimize_options.hausdorff_bound, or its mSJ is nearly 0, run the chain again
+  //! with a more faithful labeling and keep the better valid mesh (pipeline/labeling_fallback.h;
   //! `--no-labeling-fallback` turns it off)
   bool labeling_fallback = true;
   //! Mesh the map (stages hexmesh, optimize, pad, quality); false: the map only (and its parts).
@@ -123,7 +123,9 @@ struct StageRecord {
 //! The chain's retry with a more faithful labeling (pipeline/labeling_fallback.h).
 struct LabelingFallback {
   bool tried = false;
-  std::string reason;          //!< "distance" (beyond the bound) or "quality" (mSJ below kPoorMinSJ)
+  //! "optimize" (no valid mesh), "distance" (beyond the bound) or "quality" (mSJ below kPoorMinSJ)
+  std::string reason;
+  std::string failure_first;   //!< the first chain's failed stage and reason ("optimize" only)
   bool kept = false;           //!< the retry's result is the run's
   double compactness = -1;     //!< the retry's labeling compactness
   int charts_first = -1, charts_retry = -1;          //!< charts of each labeling (-1: not constructed)

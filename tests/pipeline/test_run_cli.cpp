@@ -488,6 +488,40 @@ TEST(RunCli, AMeshBeyondTheDistanceBoundIsMadeAgainWithAMoreFaithfulLabelingAndT
   EXPECT_EQ(k["construct_attempt"], "compactness 1");
 }
 
+// A chain that ends at optimize without a valid mesh (counted so by `--inject-failure optimize`)
+// gets the same retry; its valid mesh is the run's, whatever its distance: exit 0, the first
+// chain's failure in the report, none of its files left.
+TEST(RunCli, AChainWithoutAValidMeshIsMadeAgainWithAMoreFaithfulLabeling) {
+  const fs::path dir = temp_dir("labeling_fallback_optimize");
+  write_surface(dir / "box.obj", test::make_box(1.0, 1.0, 1.0, 2));
+  const CliResult r = run(dir / "box.obj", dir / "out", "--hexes 200 --padding none --inject-failure optimize");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = read_report(dir / "out");
+  ASSERT_TRUE(j["labeling_fallback"].is_object()) << j["labeling_fallback"];
+  EXPECT_EQ(j["labeling_fallback"]["reason"], "optimize");
+  EXPECT_TRUE(j["labeling_fallback"]["kept"].get<bool>());
+  EXPECT_NE(j["labeling_fallback"]["failure_first"].get<std::string>().find("optimize: injected failure"),
+            std::string::npos)
+      << j["labeling_fallback"]["failure_first"];
+  EXPECT_TRUE(j["labeling_fallback"]["hausdorff_relative_first"].is_null());
+  EXPECT_DOUBLE_EQ(j["labeling_fallback"]["hausdorff_relative_retry"].get<double>(),
+                   j["final"]["hausdorff_relative"].get<double>());
+  EXPECT_EQ(j["status"], "ok");
+  EXPECT_EQ(j["construct_attempt"], "compactness 0.3");
+  EXPECT_NE(r.out.find("gave no valid mesh"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir / "out" / "faithful-labeling"));
+  for (const auto& f : j["files"]) EXPECT_TRUE(fs::exists(dir / "out" / f.get<std::string>())) << f;
+  expect_valid_map(dir / "out" / "construct", j);
+  const core::HexMesh hex = core::hexes_of(io::read_mesh(dir / "out" / "hex_optimized.mesh"));
+  EXPECT_EQ(quality::scaled_jacobian(hex).inverted, 0);
+  EXPECT_EQ(j["final"]["inverted"], 0);
+
+  // Without the optimizer a gridded mesh is what was asked for: no retry.
+  const CliResult bare = run(dir / "box.obj", dir / "bare", "--hexes 100 --no-optimize --inject-failure quality");
+  expect_stopped_at(bare, dir / "bare", "quality", 3, {"input", "construct", "simplify", "hexmesh"});
+  EXPECT_TRUE(read_report(dir / "bare")["labeling_fallback"].is_null());
+}
+
 // A surface with a slit narrower than the wrap's ball (a square plate with a slot cut from one
 // side): when its first attempt fails (counted so by `--inject-failure construct-attempt-1`),
 // the wrap is constructed next, before the plan's other attempts. The same failure on a box,
@@ -685,7 +719,9 @@ TEST(RunCli, OptimizeFallsBackToPaddingThenNewGriddingsAndTheReportNamesThem) {
     EXPECT_FALSE(fs::exists(out / "hex_padded.mesh"));
   }
   EXPECT_GT(hexes[3], hexes[2]);  // twice the target: a finer grid
-  const CliResult r = run(dir / "box.obj", dir / "out5", "--hexes 200 --inject-failure optimize-step-5");
+  // Every fallback of the optimizer failing, the chain stops there (the labeling fallback, which
+  // would run the chain again, is tested on its own).
+  const CliResult r = run(dir / "box.obj", dir / "out5", "--hexes 200 --inject-failure optimize-step-5 --no-labeling-fallback");
   expect_stopped_at(r, dir / "out5", "optimize", 3, {"input", "construct", "simplify", "hexmesh"});
   EXPECT_EQ(read_report(dir / "out5")["optimize_tried"].size(), 5u);
 }
@@ -933,7 +969,7 @@ TEST(RunCli, ImpossibleHexCountWithoutSimplificationKeepsOnlyTheConstructedMap) 
 TEST(RunCli, OptimizeFailureExitsThreeAndKeepsTheGriddedMeshes) {
   const fs::path dir = temp_dir("optimize_fails");
   write_surface(dir / "box.obj", test::make_box(1.0, 1.0, 1.0, 2));
-  const CliResult r = run(dir / "box.obj", dir / "out", "--hexes 100 --inject-failure optimize");
+  const CliResult r = run(dir / "box.obj", dir / "out", "--hexes 100 --inject-failure optimize --no-labeling-fallback");
   expect_stopped_at(r, dir / "out", "optimize", 3, {"input", "construct", "simplify", "hexmesh"});
   const fs::path out = dir / "out";
   const auto j = read_report(out);
