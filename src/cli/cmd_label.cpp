@@ -33,8 +33,9 @@ construct::LabelSurfaceResult label_input(pipeline::ConstructInput& in, const La
   }
 }
 
-//! tets.mesh (Triangles = boundary, refs = labels), labeling.txt, and predeformed.mesh when
-//! there is a pre-deformation.
+//! tets.mesh (Triangles = boundary, refs = labels), labeling.txt, labeling_cut.txt (the graph
+//! cut before the repair: what a repair that moved many labels started from, for diagnosis),
+//! and predeformed.mesh when there is a pre-deformation.
 void write_outputs(const LabelOptions& o, const construct::LabelSurfaceResult& r) {
   const std::filesystem::path dir(o.output_dir);
   std::error_code ec;
@@ -51,6 +52,7 @@ void write_outputs(const LabelOptions& o, const construct::LabelSurfaceResult& r
     io::write_mesh(dir / "predeformed.mesh", out);
   }
   io::write_labeling(dir / "labeling.txt", r.labels);
+  io::write_labeling(dir / "labeling_cut.txt", r.initial_labels);
 }
 
 nlohmann::json report_json(const LabelOptions& o, const std::string& source, const construct::LabelSurfaceResult& r) {
@@ -91,6 +93,7 @@ nlohmann::json report_json(const LabelOptions& o, const std::string& source, con
           {"seconds", {{"tetrahedralize", r.seconds.tetrahedralize}, {"label_and_repair", r.seconds.label_and_repair}}},
           {"outputs", {{"mesh", (dir / "tets.mesh").string()},
                        {"labeling", (dir / "labeling.txt").string()},
+                       {"labeling_cut", (dir / "labeling_cut.txt").string()},
                        {"report", (dir / "report.json").string()}}}};
 }
 
@@ -138,7 +141,8 @@ void register_label(CLI::App& app) {
   sub->add_option("input", opts->input, "Surface (.obj .off .stl .ply .mesh) or tet mesh (.mesh .vtk .msh)")
       ->required();
   sub->add_option("-o,--output", opts->output_dir,
-                  "Output folder (tets.mesh, labeling.txt, report.json; predeformed.mesh with --predeform)")
+                  "Output folder (tets.mesh, labeling.txt, labeling_cut.txt: the graph cut before its repair, report.json; "
+                  "predeformed.mesh with --predeform)")
       ->required();
   sub->add_option("--quality", opts->label.tetrahedralize.quality, "TetGen radius-edge ratio bound (0: none)")
       ->capture_default_str()

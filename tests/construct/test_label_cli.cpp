@@ -64,6 +64,13 @@ TEST(LabelCli, CubeWritesConsistentOutputs) {
   std::ifstream jf(dir / "out/report.json");
   const auto j = nlohmann::json::parse(jf);
   EXPECT_EQ(j["valid"], true);
+  // The graph cut before the repair: a box's cut needs no move, so it is the labeling itself.
+  std::ifstream cf(dir / "out/labeling_cut.txt");
+  std::vector<int> cut;
+  for (int l; cf >> l;) cut.push_back(l);
+  EXPECT_EQ(j["repair_moves"], 0);
+  EXPECT_EQ(cut, labels);
+  EXPECT_EQ(j["outputs"]["labeling_cut"], (dir / "out/labeling_cut.txt").string());
   EXPECT_EQ(j["charts"], 6);
   EXPECT_EQ(j["corners"], 8);
   EXPECT_EQ(j["boundaries"], 12);
