@@ -898,8 +898,15 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   if (!res.stopped_crossing) quality_phase(w, res, progress);
   res.quality.seconds = seconds_since(t2);
 
-  res.after = summary(mesh, false);
   if (const quality::SurfaceDistance* d = w.distances.find(mesh)) res.distance = *d;
+  // Phase 3: the polish moves interior vertices only, so the distance found above stays.
+  if (o.polish && !res.stopped_crossing && inverted_jacobians(mesh) == 0) {
+    res.polish = polish_worst_hexes(mesh);
+    core::logger().info("optimize: polish of the worst hexes: mSJ {:.4f} -> {:.4f} ({} moves, {} sweeps, {:.2f} s)",
+                        res.polish.min_before, res.polish.min_after, res.polish.moved, res.polish.sweeps,
+                        res.polish.seconds);
+  }
+  res.after = summary(mesh, false);
   res.inverted_after = inverted_jacobians(mesh);
   res.untangled = res.inverted_after == 0;
   res.seconds = seconds_since(t0);

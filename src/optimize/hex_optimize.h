@@ -21,9 +21,11 @@
 //! larger weights on the hexes of lowest scaled Jacobian, to raise the minimum. A round is kept
 //! only when it raises the minimum scaled Jacobian without lowering the average below the one
 //! at the start of the phase (less OptimizeOptions::average_slack after untangling) (or, while tangled, when it leaves fewer inverted hexes).
+//! (3) on a valid result, the polish of the worst hexes' interior vertices (polish.h).
 //! Deterministic: same input and options, same output bit for bit.
 
 #include "core/types.h"
+#include "optimize/polish.h"
 #include "quality/scaled_jacobian.h"
 #include "quality/surface_distance.h"
 
@@ -123,6 +125,9 @@ struct OptimizeOptions {
   //! boundary along the target), so a caller that tries again with a stiffer boundary barrier
   //! when the result crosses itself (pipeline/optimize_stage.h) does not wait for them.
   bool stop_when_untangled_crosses = false;
+  //! Last, on a valid result: the interior vertices of the worst hexes moved one at a time to
+  //! raise the minimum scaled Jacobian around them (optimize/polish.h; the boundary stays).
+  bool polish = true;
 };
 
 //! Work of one phase.
@@ -155,6 +160,7 @@ struct OptimizeResult {
   //! points it returns (the drift and fit retries do): a caller need not measure it again.
   std::optional<quality::SurfaceDistance> distance;
   PhaseReport setup, untangle, quality;
+  PolishResult polish;  //!< the polish of the worst hexes (sweeps 0: not run)
   double seconds = 0;  //!< total wall time
 };
 
