@@ -214,8 +214,9 @@ void register_optimize(CLI::App& app) {
       ->capture_default_str();
   sub->add_flag("--no-features", opts->no_features, "Do not preserve sharp features (surface attraction only)");
   sub->add_flag("--no-polish", opts->no_polish,
-                "Skip the last step, which moves the interior vertices of the worst hexes one at a time to raise the "
-                "lowest scaled Jacobian around them (never lowering the mesh's minimum or average; the boundary stays)");
+                "Skip the last step, which moves the vertices of the worst hexes one at a time to raise the lowest "
+                "scaled Jacobian around them (never lowering the mesh's minimum or average; boundary vertices along "
+                "the target, kept within --max-hausdorff and without boundary crossings)");
   sub->add_flag("--keep-failed", opts->keep_failed,
                 "Write the result even when it fails the fold-over check (the exit code is still 3)");
   sub->callback([opts] { run_optimize(*opts); });

@@ -6,6 +6,7 @@
 #include "core/errors.h"
 #include "core/log.h"
 #include "core/progress.h"
+#include "core/stopwatch.h"
 #include "core/topology.h"
 #include "optimize/boundary_lift.h"
 #include "optimize/centre_frames.h"
@@ -840,6 +841,11 @@ void quality_phase(Optimization& w, OptimizeResult& res, core::ProgressTask& pro
   }
 }
 
+void log_polish(const PolishResult& p) {
+  core::logger().info("optimize: polish of the worst hexes: mSJ {:.4f} -> {:.4f} ({} moves, {} sweeps, {:.2f} s)",
+                      p.min_before, p.min_after, p.moved, p.sweeps, p.seconds);
+}
+
 //! Whether the mesh's boundary crosses itself (untangled: every hex positive), logged.
 bool untangled_boundary_crosses(const core::HexMesh& mesh) {
   const FoldoverReport check = check_foldover(mesh);
@@ -847,6 +853,61 @@ bool untangled_boundary_crosses(const core::HexMesh& mesh) {
   core::logger().info("optimize: the untangled boundary crosses itself ({} pairs of triangles); no quality rounds",
                       check.boundary_self_intersections);
   return true;
+}
+
+//! Phase 3 (polish.h): the worst hexes' interior vertices, then their boundary vertices along
+//! the target (surface vertices on the surface, feature vertices on the feature lines, corners
+//! fixed). The boundary's moves are kept only when they raise the mesh's mSJ, the boundary does
+//! not cross itself and stays within the Hausdorff bound (or no farther than before): the
+//! surface is a constraint, as in the rounds. Skipped after a fit (quad centres attracted), whose vertices are meant to leave
+//! the target. res.distance is the result's distance when it was known before.
+void polish_phase(Optimization& w, OptimizeResult& res) {
+  res.polish = polish_worst_hexes(w.mesh);
+  const PolishResult inner = res.polish;
+  if (w.o.face_attraction > 0 || res.fit_retry) return log_polish(res.polish);
+  const Problem& pb = w.pb;
+  std::vector<Vec3> normal(w.mesh.points.size(), Vec3::Zero());
+  for (const auto& q : pb.quads) {
+    const Vec3 n = (w.mesh.points[q[2]] - w.mesh.points[q[0]]).cross(w.mesh.points[q[3]] - w.mesh.points[q[1]]);
+    for (int v : q) normal[v] += n;
+  }
+  const BoundaryProjector onto_target = [&](int v, Vec3& p) {
+    switch (pb.roles.role[v]) {
+      case VertexRole::Surface:
+        p = pb.target->closest_point_facing(p, normal[v], pb.roles.edge_length[v]).first;
+        return true;
+      case VertexRole::Feature:
+        p = pb.target->closest_feature_point(p);
+        return true;
+      default:
+        return false;
+    }
+  };
+  core::HexMesh trial = w.mesh;
+  const PolishResult outer = polish_worst_hexes(trial, {}, {}, onto_target);
+  res.polish.sweeps += outer.sweeps;
+  res.polish.seconds += outer.seconds;
+  // Boundary moves that leave the mesh's minimum where it was change the surface for nothing.
+  if (outer.moved == 0 || outer.min_after <= inner.min_after + 1e-9) return log_polish(res.polish);
+  const core::Stopwatch clock;
+  const double before = res.distance ? res.distance->relative : w.hausdorff();  // the boundary as before the polish
+  const quality::SurfaceDistance after = quality::hausdorff_distance(trial, w.target_mesh);
+  const int crossings = check_foldover(trial).boundary_self_intersections;
+  res.polish.seconds += clock.seconds();
+  if (crossings > 0 || (after.relative > w.o.hausdorff_bound && after.relative > before)) {
+    core::logger().info("optimize: the polish's boundary moves are not kept (Hausdorff {:.3f} % -> {:.3f} %, {} "
+                        "boundary crossings)",
+                        100 * before, 100 * after.relative, crossings);
+    return log_polish(res.polish);
+  }
+  w.mesh = std::move(trial);
+  w.distances.remember(w.mesh, after);
+  res.distance = after;
+  res.polish.moved += outer.moved;
+  res.polish.min_after = outer.min_after;
+  log_polish(res.polish);
+  core::logger().info("optimize: polish: interior mSJ {:.4f}, with the boundary {:.4f}; Hausdorff {:.3f} % -> {:.3f} %",
+                      inner.min_after, outer.min_after, 100 * before, 100 * after.relative);
 }
 
 }  // namespace
@@ -899,13 +960,8 @@ OptimizeResult optimize_hex_mesh(core::HexMesh& mesh, const core::TriMesh& targe
   res.quality.seconds = seconds_since(t2);
 
   if (const quality::SurfaceDistance* d = w.distances.find(mesh)) res.distance = *d;
-  // Phase 3: the polish moves interior vertices only, so the distance found above stays.
-  if (o.polish && !res.stopped_crossing && inverted_jacobians(mesh) == 0) {
-    res.polish = polish_worst_hexes(mesh);
-    core::logger().info("optimize: polish of the worst hexes: mSJ {:.4f} -> {:.4f} ({} moves, {} sweeps, {:.2f} s)",
-                        res.polish.min_before, res.polish.min_after, res.polish.moved, res.polish.sweeps,
-                        res.polish.seconds);
-  }
+  // Phase 3: the polish (it updates res.distance when it moves the boundary).
+  if (o.polish && !res.stopped_crossing && inverted_jacobians(mesh) == 0) polish_phase(w, res);
   res.after = summary(mesh, false);
   res.inverted_after = inverted_jacobians(mesh);
   res.untangled = res.inverted_after == 0;

@@ -125,8 +125,9 @@ struct OptimizeOptions {
   //! boundary along the target), so a caller that tries again with a stiffer boundary barrier
   //! when the result crosses itself (pipeline/optimize_stage.h) does not wait for them.
   bool stop_when_untangled_crosses = false;
-  //! Last, on a valid result: the interior vertices of the worst hexes moved one at a time to
-  //! raise the minimum scaled Jacobian around them (optimize/polish.h; the boundary stays).
+  //! Last, on a valid result: the vertices of the worst hexes moved one at a time to raise the
+  //! minimum scaled Jacobian around them (optimize/polish.h), the interior ones first, then the
+  //! boundary ones along the target (kept within the Hausdorff bound, without crossings).
   bool polish = true;
 };
 

@@ -52,8 +52,10 @@ double mean_edge(const core::HexMesh& mesh, int v, const std::vector<int>& hexes
   return count > 0 ? total / count : 0.0;
 }
 
-//! Pattern search at vertex v (see polish.h); true when it moved.
-bool polish_vertex(core::HexMesh& mesh, int v, const std::vector<int>& hexes, const PolishOptions& o) {
+//! Pattern search at vertex v (see polish.h); true when it moved. `project`: null for an
+//! interior vertex, else what puts a boundary vertex's trial position back on the target.
+bool polish_vertex(core::HexMesh& mesh, int v, const std::vector<int>& hexes, const PolishOptions& o,
+                   const BoundaryProjector* project) {
   constexpr int kMaxEvaluations = 200;  // a vertex's search ends well before; a bound on its cost
   const Around start = around(mesh, hexes);
   const double edge = mean_edge(mesh, v, hexes);
@@ -67,7 +69,10 @@ bool polish_vertex(core::HexMesh& mesh, int v, const std::vector<int>& hexes, co
       core::Vec3 delta = core::Vec3::Zero();
       delta[d / 2] = d % 2 == 0 ? step : -step;
       const core::Vec3 here = mesh.points[v];
-      mesh.points[v] = here + delta;
+      core::Vec3 trial = here + delta;
+      if (project != nullptr && !(*project)(v, trial)) return false;
+      if (trial == here) continue;
+      mesh.points[v] = trial;
       const Around a = around(mesh, hexes);
       ++evaluations;
       if (a.min > best + 1e-12 && a.sum >= start.sum) {
@@ -84,7 +89,8 @@ bool polish_vertex(core::HexMesh& mesh, int v, const std::vector<int>& hexes, co
 
 }  // namespace
 
-PolishResult polish_worst_hexes(core::HexMesh& mesh, const std::vector<char>& fixed, const PolishOptions& o) {
+PolishResult polish_worst_hexes(core::HexMesh& mesh, const std::vector<char>& fixed, const PolishOptions& o,
+                                const BoundaryProjector& boundary) {
   const core::Stopwatch clock;
   PolishResult r;
   const int nh = mesh.num_cells();
@@ -94,7 +100,9 @@ PolishResult polish_worst_hexes(core::HexMesh& mesh, const std::vector<char>& fi
   if (nh == 0 || r.min_before <= 0) return r;
 
   std::vector<char> held(mesh.points.size(), 0);
-  for (int v : core::boundary(mesh).vertex_map) held[v] = 1;
+  std::vector<char> on_boundary(mesh.points.size(), 0);
+  for (int v : core::boundary(mesh).vertex_map) on_boundary[v] = 1;
+  if (!boundary) held = on_boundary;
   for (std::size_t v = 0; v < fixed.size() && v < held.size(); ++v) held[v] = held[v] || fixed[v];
   std::vector<std::vector<int>> hexes_of(mesh.points.size());
   for (int h = 0; h < nh; ++h)
@@ -111,7 +119,7 @@ PolishResult polish_worst_hexes(core::HexMesh& mesh, const std::vector<char>& fi
     candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
     ++r.sweeps;
     for (int v : candidates) {
-      if (!polish_vertex(mesh, v, hexes_of[v], o)) continue;
+      if (!polish_vertex(mesh, v, hexes_of[v], o, on_boundary[v] ? &boundary : nullptr)) continue;
       ++r.moved;
       for (int h : hexes_of[v]) sj[h] = hex_sj(mesh, h);
     }

@@ -10,13 +10,15 @@
 //! S3's two worst hexes, 0.471, have no boundary vertex). Here each interior vertex of a hex
 //! within `band` of the current minimum gets a pattern search (±x, ±y, ±z, the step halved when
 //! no direction helps), and a move is kept only when it raises the minimum of the hexes around
-//! the vertex and does not lower their sum. So the mesh's mSJ never falls, its average SJ never
-//! falls, and the boundary (hence the distance to the target) does not move. Sweeps repeat while
-//! they raise the mesh's minimum. Sequential and in vertex order: the same result on any number
-//! of threads.
+//! the vertex and does not lower their sum. So the mesh's mSJ never falls and its average SJ
+//! never falls. Boundary vertices stay, unless a projector is given: each trial position is
+//! then put back on the target first (the optimizer checks the distance and the boundary's
+//! crossings after, hex_optimize.h). Sweeps repeat while they raise the mesh's minimum.
+//! Sequential and in vertex order: the same result on any number of threads.
 
 #include "core/types.h"
 
+#include <functional>
 #include <vector>
 
 namespace polycube::optimize {
@@ -40,10 +42,16 @@ struct PolishResult {
   double seconds = 0;
 };
 
-//! Polish `mesh` in place (see the file comment). Vertices on the boundary, and those flagged
-//! in `fixed` (empty or #V flags), never move. A mesh with an inverted or degenerate hex is left
-//! as it is: polishing is for valid meshes.
+//! How a boundary vertex moves: given the vertex and a trial position, put the position back on
+//! the target (its surface, or its feature line) and return true, or return false when the
+//! vertex may not move (a corner).
+using BoundaryProjector = std::function<bool(int vertex, core::Vec3& position)>;
+
+//! Polish `mesh` in place (see the file comment). Vertices flagged in `fixed` (empty or #V
+//! flags) never move; boundary vertices move only through `boundary` (empty: they stay), each
+//! trial position put back on the target by it. A mesh with an inverted or degenerate hex is
+//! left as it is: polishing is for valid meshes.
 PolishResult polish_worst_hexes(core::HexMesh& mesh, const std::vector<char>& fixed = {},
-                                const PolishOptions& options = {});
+                                const PolishOptions& options = {}, const BoundaryProjector& boundary = {});
 
 }  // namespace polycube::optimize

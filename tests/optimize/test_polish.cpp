@@ -60,6 +60,35 @@ TEST(Polish, TheWorstHexesAroundInteriorVerticesRiseAndTheBoundaryStays) {
   EXPECT_EQ(again.points, m.points);
 }
 
+// A boundary vertex moves only through the projector, which puts each trial back on the target:
+// on the bottom face z = 0 a vertex pushed along the face returns towards its place, and stays
+// on the face; a projector that refuses the vertex (a corner) leaves it where it is.
+TEST(Polish, BoundaryVerticesMoveOnlyAlongTheTargetThroughTheProjector) {
+  core::HexMesh start = test::box_grid(4, 4, 4);
+  const int v = nearest_vertex(start, {0.5, 0.5, 0.0});
+  start.points[v] += core::Vec3(0.09, -0.07, 0.0);
+  const double before = quality::scaled_jacobian(start).min;
+  ASSERT_LT(before, 0.8);
+
+  core::HexMesh m = start;
+  const optimize::BoundaryProjector onto_bottom = [&](int, core::Vec3& p) {
+    p.z() = 0.0;  // every boundary vertex the worst hexes have here lies on z = 0
+    return true;
+  };
+  const optimize::PolishResult r = optimize::polish_worst_hexes(m, {}, {}, onto_bottom);
+  EXPECT_GT(r.min_after, 0.97);
+  EXPECT_DOUBLE_EQ(m.points[v].z(), 0.0);
+  EXPECT_NE(m.points[v], start.points[v]);
+
+  core::HexMesh held = start;
+  const optimize::BoundaryProjector refuse = [](int, core::Vec3&) { return false; };
+  const optimize::PolishResult none = optimize::polish_worst_hexes(held, {}, {}, refuse);
+  EXPECT_EQ(held.points[v], start.points[v]);
+  // Only the interior vertex above it can give way: better than before, far from the 0.97 above.
+  EXPECT_GE(none.min_after, before);
+  EXPECT_LT(none.min_after, 0.9);
+}
+
 TEST(Polish, FixedVerticesAndInvalidMeshesAreLeftAsTheyAre) {
   const core::HexMesh start = distorted_grid();
   core::HexMesh m = start;
