@@ -230,28 +230,39 @@ struct Problem {
     return d;
   }
 
+  //! Area-weighted normals (not unit) of the boundary quads and, summed, of their vertices (#V),
+  //! at the points `point(v)` gives.
+  template <class Point>
+  void boundary_normals(const Point& point, std::vector<Vec3>& quad_normal, std::vector<Vec3>& vertex_normal) const {
+    quad_normal.assign(quads.size(), Vec3::Zero());
+    vertex_normal.assign(roles.role.size(), Vec3::Zero());
+    for (std::size_t f = 0; f < quads.size(); ++f) {
+      const auto& q = quads[f];
+      quad_normal[f] = (point(q[2]) - point(q[0])).cross(point(q[3]) - point(q[1]));
+      for (int v : q) vertex_normal[v] += quad_normal[f];
+    }
+  }
+
+  //! Where boundary vertex v at p belongs on the target: the closest point of the feature lines
+  //! (feature vertices) or of the surface triangles facing `normal`'s way (the others).
+  [[nodiscard]] Vec3 vertex_target(int v, const Vec3& p, const Vec3& normal) const {
+    if (roles.role[v] == VertexRole::Feature) return target->closest_feature_point(p);
+    return target->closest_point_facing(p, normal, roles.edge_length[v]).first;
+  }
+
   //! Move every attraction target to the closest point of the feature lines (feature vertices)
   //! or of the surface triangles facing the way the hex boundary faces there (the others): see
   //! TargetSurface::closest_point_facing. Attractions beyond the mesh's vertices are the centres
   //! of `quads` from point `centre_base` on (face_attraction.h).
   void project(const Eigen::VectorXd& x, std::vector<solve::Attraction>& attr, int centre_base = -1) const {
     const auto point = [&x](int v) -> Vec3 { return x.segment<3>(3 * static_cast<Eigen::Index>(v)); };
-    std::vector<Vec3> quad_normal(quads.size());
-    std::vector<Vec3> vertex_normal(roles.role.size(), Vec3::Zero());
-    for (std::size_t f = 0; f < quads.size(); ++f) {
-      const auto& q = quads[f];
-      quad_normal[f] = (point(q[2]) - point(q[0])).cross(point(q[3]) - point(q[1]));
-      for (int v : q) vertex_normal[v] += quad_normal[f];
-    }
+    std::vector<Vec3> quad_normal, vertex_normal;
+    boundary_normals(point, quad_normal, vertex_normal);
     tbb::parallel_for(std::size_t{0}, attr.size(), [&](std::size_t k) {
       const Vec3 p = point(attr[k].vertex);
       const auto v = static_cast<std::size_t>(attr[k].vertex);
-      if (v < roles.role.size() && roles.role[v] == VertexRole::Feature) {
-        attr[k].target = target->closest_feature_point(p);
-        return;
-      }
       if (v < roles.role.size()) {
-        attr[k].target = target->closest_point_facing(p, vertex_normal[v], roles.edge_length[v]).first;
+        attr[k].target = vertex_target(attr[k].vertex, p, vertex_normal[v]);
         return;
       }
       const auto& q = quads[v - static_cast<std::size_t>(centre_base)];
@@ -859,29 +870,21 @@ bool untangled_boundary_crosses(const core::HexMesh& mesh) {
 //! the target (surface vertices on the surface, feature vertices on the feature lines, corners
 //! fixed). The boundary's moves are kept only when they raise the mesh's mSJ, the boundary does
 //! not cross itself and stays within the Hausdorff bound (or no farther than before): the
-//! surface is a constraint, as in the rounds. Skipped after a fit (quad centres attracted), whose vertices are meant to leave
-//! the target. res.distance is the result's distance when it was known before.
+//! surface is a constraint, as in the rounds. Skipped after a fit (quad centres attracted),
+//! whose vertices are meant to leave the target. res.distance is the result's distance when it
+//! was known before.
 void polish_phase(Optimization& w, OptimizeResult& res) {
   res.polish = polish_worst_hexes(w.mesh);
   const PolishResult inner = res.polish;
   if (w.o.face_attraction > 0 || res.fit_retry) return log_polish(res.polish);
   const Problem& pb = w.pb;
-  std::vector<Vec3> normal(w.mesh.points.size(), Vec3::Zero());
-  for (const auto& q : pb.quads) {
-    const Vec3 n = (w.mesh.points[q[2]] - w.mesh.points[q[0]]).cross(w.mesh.points[q[3]] - w.mesh.points[q[1]]);
-    for (int v : q) normal[v] += n;
-  }
+  std::vector<Vec3> quad_normal, normal;
+  pb.boundary_normals([&](int v) { return w.mesh.points[v]; }, quad_normal, normal);
   const BoundaryProjector onto_target = [&](int v, Vec3& p) {
-    switch (pb.roles.role[v]) {
-      case VertexRole::Surface:
-        p = pb.target->closest_point_facing(p, normal[v], pb.roles.edge_length[v]).first;
-        return true;
-      case VertexRole::Feature:
-        p = pb.target->closest_feature_point(p);
-        return true;
-      default:
-        return false;
-    }
+    const VertexRole role = pb.roles.role[v];
+    if (role != VertexRole::Surface && role != VertexRole::Feature) return false;  // corners stay
+    p = pb.vertex_target(v, p, normal[v]);
+    return true;
   };
   core::HexMesh trial = w.mesh;
   const PolishResult outer = polish_worst_hexes(trial, {}, {}, onto_target);
