@@ -14,6 +14,7 @@ namespace {
 std::mutex g_progress_mutex;
 std::shared_ptr<ProgressClient> g_client;
 thread_local ProgressTask* t_current = nullptr;  // the innermost task running on this thread
+thread_local bool t_quiet = false;               // QuietProgress: outermost tasks get no client
 //! The least share of the outermost bar an inner task runs on: below it the task gets a bar of
 //! its own (less than a percent would not move the bar).
 constexpr double kLeastShare = 0.01;
@@ -60,12 +61,16 @@ ProgressTask::ProgressTask(std::string name, std::int64_t total)
     if (client_) client_->begin(name_);
     return;
   }
-  {
+  if (!t_quiet) {
     std::lock_guard lock(g_progress_mutex);
     client_ = g_client;
   }
   if (client_) client_->begin(name_);
 }
+
+QuietProgress::QuietProgress() : was_quiet_(t_quiet) { t_quiet = true; }
+
+QuietProgress::~QuietProgress() { t_quiet = was_quiet_; }
 
 ProgressTask::~ProgressTask() {
   t_current = parent_;

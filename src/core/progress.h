@@ -80,4 +80,18 @@ class ProgressTask {
   std::shared_ptr<ProgressClient> client_;
 };
 
+//! While one lives, tasks started on this thread outside any other task talk to no client: work
+//! done beside a stage on a thread of its own draws no bar of its own (and calls no client
+//! from a second thread).
+class QuietProgress {
+ public:
+  QuietProgress();
+  ~QuietProgress();
+  QuietProgress(const QuietProgress&) = delete;
+  QuietProgress& operator=(const QuietProgress&) = delete;
+
+ private:
+  bool was_quiet_;
+};
+
 }  // namespace polycube::core

@@ -7,6 +7,7 @@
 #include "core/stopwatch.h"
 #include "io/polycube_map_io.h"
 #include "mesh/grid.h"
+#include "pipeline/fewest_hexes.h"
 #include "pipeline/input.h"
 #include "pipeline/labeling_fallback.h"
 #include "pipeline/optimize_stage.h"
@@ -124,16 +125,17 @@ void clear_earlier_run(const std::filesystem::path& out_dir, const std::filesyst
 bool pads(const RunOptions& o) { return o.hexmesh && o.optimize && o.padding != padding::PaddingMode::None; }
 
 //! The pad stage's kept result `padded`, or the padded mesh of the plan at λ = 0 where
-//! pad_with_fewest_hexes() makes one that passes the same rules with an mSJ at least as high:
+//! `candidate` (fewest_hexes.h) gives one that passes the same rules with an mSJ at least as high:
 //! as good a mesh with fewer hexes. `hex` becomes the kept mesh, hex_padded.* its files.
-void keep_fewest_hexes(core::HexMesh& hex, const ConstructInput& in, const RunOptions& o, const std::string& mode,
-                       padding::PadResult& padded, double unpadded_distance, const std::filesystem::path& out_dir,
-                       RunResult& r, const std::function<void(const std::filesystem::path&)>& wrote) {
+void keep_fewest_hexes(core::HexMesh& hex, const RunOptions& o, const std::string& mode,
+                       padding::PadResult& padded, double unpadded_distance, FewestHexesCandidate& candidate,
+                       const std::filesystem::path& out_dir, RunResult& r,
+                       const std::function<void(const std::filesystem::path&)>& wrote) {
   const double planned_seconds = r.padding_analysis_seconds + r.padding_solve_seconds;
   RunResult fewest_r = r;
   std::optional<padding::PadResult> fewest;
   try {
-    fewest = pad_with_fewest_hexes(hex, in, o, mode + " (lambda 0)", fewest_r);
+    fewest = candidate.take(mode + " (lambda 0)", fewest_r);
   } catch (const core::Error& e) {
     fewest_r.padding_fewest_hexes = fmt::format("lambda 0: failed ({})", e.what());
   }
@@ -344,8 +346,10 @@ RunResult run_chain(const std::filesystem::path& input, const std::filesystem::p
       std::optional<padding::PadResult> p;
       std::string failure;
       const double unpadded_distance = in.distances.measure(hex, in.target).relative;  // remembered: no new measure
+      FewestHexesCandidate candidate(hex, in, o);
       try {
-        p = pad_and_record(hex, in, o, o.padding, mode, out_dir, r, add_file);
+        p = pad_and_record(hex, in, o, o.padding, mode, out_dir, r, add_file,
+                           [&](int selected) { candidate.planned(selected); });
         if (p && !p->check.ok()) failure = "the padded mesh fails the global fold-over check: " + fold_summary(p->check);
       } catch (const core::Error& e) {
         failure = e.what();
@@ -372,7 +376,7 @@ RunResult run_chain(const std::filesystem::path& input, const std::filesystem::p
                             why);
         return;
       }
-      keep_fewest_hexes(hex, in, o, mode, *p, unpadded_distance, out_dir, r, add_file);
+      keep_fewest_hexes(hex, o, mode, *p, unpadded_distance, candidate, out_dir, r, add_file);
     });
 
   // 7. quality of the final hex mesh

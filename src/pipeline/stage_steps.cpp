@@ -56,18 +56,7 @@ std::string fold_summary(const optimize::FoldoverReport& fold) {
                      fold.inverted_hexes, fold.nonpositive_scaled_jacobian, fold.boundary_self_intersections);
 }
 
-namespace {
-
-//! The largest share of the boundary facets the plan at λ = 0 may pad to be tried after a plan
-//! that pads them all: the thesis's selective padding adds 11–55 % of global padding's hexes.
-constexpr double kFewestShare = 0.5;
-
-//! The facets `mode` pads on this mesh; empty when selective padding finds nothing to pad.
-std::vector<std::uint8_t> padding_facets(const core::HexMesh& hex, padding::PaddingMode mode, const RunOptions& o,
-                                         RunResult& r) {
-  if (mode == padding::PaddingMode::Global) return padding::boundary_selection(hex);
-  const padding::SelectivePlan plan =
-      padding::plan_selective_padding(hex, o.padding_analysis, o.padding_selection);
+void record_plan(const padding::SelectivePlan& plan, RunResult& r) {
   r.padding_hard_facets = plan.analysis.hard_facets;
   r.padding_plan_optimal = plan.selection.optimal;
   r.padding_plan_gap = plan.selection.gap;
@@ -77,11 +66,8 @@ std::vector<std::uint8_t> padding_facets(const core::HexMesh& hex, padding::Padd
   r.padding_selected_facets = plan.selection.selected;
   r.padding_edge_turns = plan.selection.edge_turns;
   r.padding_vertex_turns = plan.selection.vertex_turns;
-  if (plan.selection.selected == 0) return {};
-  return plan.selection.facets;
 }
 
-//! The padded mesh's figures in r (r.padding = how).
 void record_padding(const padding::PadResult& p, const std::string& how, RunResult& r) {
   r.padding = how;
   r.padding_added = p.added_hexes;
@@ -94,16 +80,29 @@ void record_padding(const padding::PadResult& p, const std::string& how, RunResu
   r.iterations_optimize = p.optimization.untangle.iterations + p.optimization.quality.iterations;
 }
 
+namespace {
+
+//! The facets `mode` pads on this mesh; empty when selective padding finds nothing to pad.
+std::vector<std::uint8_t> padding_facets(const core::HexMesh& hex, padding::PaddingMode mode, const RunOptions& o,
+                                         RunResult& r) {
+  if (mode == padding::PaddingMode::Global) return padding::boundary_selection(hex);
+  padding::SelectivePlan plan = padding::plan_selective_padding(hex, o.padding_analysis, o.padding_selection);
+  record_plan(plan, r);
+  if (plan.selection.selected == 0) return {};
+  return std::move(plan.selection.facets);
+}
+
 }  // namespace
 
 std::optional<padding::PadResult> pad_and_record(const core::HexMesh& hex, const ConstructInput& in,
                                                  const RunOptions& o, padding::PaddingMode mode, const std::string& how,
                                                  const std::filesystem::path& out_dir, RunResult& r,
-                                                 const FileWritten& wrote) {
+                                                 const FileWritten& wrote, const std::function<void(int)>& planned) {
   // Two steps for the progress bar: which facets (the selective plan solves a MILP), then the
   // sheet and its optimization.
   core::ProgressTask progress("pad", 2);
   const std::vector<std::uint8_t> facets = padding_facets(hex, mode, o, r);
+  if (planned) planned(static_cast<int>(std::count(facets.begin(), facets.end(), 1)));
   progress.step();
   if (facets.empty()) return std::nullopt;
   padding::PadResult p = padding::pad_hex_mesh(hex, in.target, facets, o.padding_options);
@@ -120,33 +119,6 @@ void write_padded(const padding::PadResult& p, const std::filesystem::path& out_
   wrote(out_dir / "hex_padded.mesh");
   io::write_mesh(out_dir / "hex_padded.vtk", padding::padded_mesh_data(p));
   wrote(out_dir / "hex_padded.vtk");
-}
-
-std::optional<padding::PadResult> pad_with_fewest_hexes(const core::HexMesh& hex, const ConstructInput& in,
-                                                        const RunOptions& o, const std::string& how, RunResult& r) {
-  const std::vector<std::uint8_t> boundary = padding::boundary_selection(hex);
-  const int whole = static_cast<int>(std::count(boundary.begin(), boundary.end(), 1));
-  if (!o.padding_fewest_too || o.padding != padding::PaddingMode::Selective || o.padding_selection.lambda <= 0 ||
-      r.padding_selected_facets != whole)
-    return std::nullopt;
-  RunOptions fewest = o;
-  fewest.padding_selection.lambda = 0;
-  // A candidate, not the user's plan: its starts (the pillow of HF's hexes) without a search,
-  // which at λ = 0 rarely closes its gap within the limit on small meshes (and would then
-  // depend on the machine).
-  fewest.padding_selection.search = false;
-  const std::vector<std::uint8_t> facets = padding_facets(hex, padding::PaddingMode::Selective, fewest, r);
-  const int selected = static_cast<int>(std::count(facets.begin(), facets.end(), 1));
-  if (selected > kFewestShare * whole) {
-    r.padding_fewest_hexes = fmt::format("lambda 0: {} of the {} boundary facets, not padded (more than {:.0f} %)",
-                                         selected, whole, 100 * kFewestShare);
-    return std::nullopt;
-  }
-  if (selected == 0) return std::nullopt;  // HF empty: the plan at λ = 1 padded nothing either
-  padding::PadResult p = padding::pad_hex_mesh(hex, in.target, facets, o.padding_options);
-  in.distances.remember(p.mesh, p.distance);
-  record_padding(p, how, r);
-  return p;
 }
 
 void discard_padded(const std::filesystem::path& out_dir, RunResult& r) {

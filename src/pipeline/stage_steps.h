@@ -41,25 +41,21 @@ std::string fold_summary(const optimize::FoldoverReport& fold);
 //! Pad the mesh (`mode`), optimize and check it (padding/padding.h); record the figures in r
 //! (r.padding = how) and write hex_padded.mesh and hex_padded.vtk when the result passes the
 //! check. Nothing when there is nothing to pad. A facet set the insertion refuses comes back as
-//! an error, like a failed check.
+//! an error, like a failed check. `planned`, when given, is told how many facets the plan pads
+//! as soon as it is known (before the padding and its optimization).
 std::optional<padding::PadResult> pad_and_record(const core::HexMesh& hex, const ConstructInput& in,
                                                  const RunOptions& o, padding::PaddingMode mode, const std::string& how,
                                                  const std::filesystem::path& out_dir, RunResult& r,
-                                                 const FileWritten& wrote);
+                                                 const FileWritten& wrote, const std::function<void(int)>& planned = {});
+
+//! A selective plan's figures in r (|HF|, |PF|, turns, solver, gap, seconds).
+void record_plan(const padding::SelectivePlan& plan, RunResult& r);
+
+//! A padded mesh's figures in r (r.padding = how).
+void record_padding(const padding::PadResult& p, const std::string& how, RunResult& r);
 
 //! Write a padded mesh that passed its check: hex_padded.mesh and hex_padded.vtk.
 void write_padded(const padding::PadResult& p, const std::filesystem::path& out_dir, const FileWritten& wrote);
-
-//! The other end of selective padding's trade-off (thesis §4.5.1; §4.6: the best λ depends on the
-//! shape, found by trying λ values and keeping the best result): when the plan at the options'
-//! λ padded every boundary facet (r.padding_selected_facets; selective padding was not
-//! selective), the plan at λ = 0, turns free and the fewest hexes, padded and optimized when it
-//! pads at most half of the boundary facets (a set nearly as large saves little for its turns).
-//! Records the padding's figures in `r` (a copy the caller keeps with the mesh) and, when it
-//! pads nothing, why in r.padding_fewest_hexes. Nothing when RunOptions::padding_fewest_too is
-//! off. Writes nothing.
-std::optional<padding::PadResult> pad_with_fewest_hexes(const core::HexMesh& hex, const ConstructInput& in,
-                                                        const RunOptions& o, const std::string& how, RunResult& r);
 
 //! Forget a padded mesh that is not kept (only an injected failure can reject a mesh that
 //! passed the check, the only one pad_and_record writes).
