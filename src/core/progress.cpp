@@ -14,7 +14,9 @@ namespace {
 std::mutex g_progress_mutex;
 std::shared_ptr<ProgressClient> g_client;
 thread_local ProgressTask* t_current = nullptr;  // the innermost task running on this thread
-thread_local bool t_quiet = false;               // QuietProgress: outermost tasks get no client
+// ThreadProgressClient: the client of the tasks started on this thread outside any other task.
+thread_local bool t_has_own_client = false;
+thread_local std::shared_ptr<ProgressClient> t_own_client;
 //! The least share of the outermost bar an inner task runs on: below it the task gets a bar of
 //! its own (less than a percent would not move the bar).
 constexpr double kLeastShare = 0.01;
@@ -61,16 +63,25 @@ ProgressTask::ProgressTask(std::string name, std::int64_t total)
     if (client_) client_->begin(name_);
     return;
   }
-  if (!t_quiet) {
+  if (t_has_own_client) {
+    client_ = t_own_client;
+  } else {
     std::lock_guard lock(g_progress_mutex);
     client_ = g_client;
   }
   if (client_) client_->begin(name_);
 }
 
-QuietProgress::QuietProgress() : was_quiet_(t_quiet) { t_quiet = true; }
+ThreadProgressClient::ThreadProgressClient(std::shared_ptr<ProgressClient> client)
+    : had_(t_has_own_client), previous_(std::move(t_own_client)) {
+  t_has_own_client = true;
+  t_own_client = std::move(client);
+}
 
-QuietProgress::~QuietProgress() { t_quiet = was_quiet_; }
+ThreadProgressClient::~ThreadProgressClient() {
+  t_has_own_client = had_;
+  t_own_client = std::move(previous_);
+}
 
 ProgressTask::~ProgressTask() {
   t_current = parent_;

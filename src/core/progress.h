@@ -80,18 +80,20 @@ class ProgressTask {
   std::shared_ptr<ProgressClient> client_;
 };
 
-//! While one lives, tasks started on this thread outside any other task talk to no client: work
-//! done beside a stage on a thread of its own draws no bar of its own (and calls no client
-//! from a second thread).
-class QuietProgress {
+//! While one lives, tasks started on this thread outside any other task talk to `client`
+//! (nullptr: to none) instead of the installed one: work done beside a stage on a thread of
+//! its own draws no bar of its own, calls no client from a second thread, and can be cancelled
+//! by its owner alone.
+class ThreadProgressClient {
  public:
-  QuietProgress();
-  ~QuietProgress();
-  QuietProgress(const QuietProgress&) = delete;
-  QuietProgress& operator=(const QuietProgress&) = delete;
+  explicit ThreadProgressClient(std::shared_ptr<ProgressClient> client);
+  ~ThreadProgressClient();
+  ThreadProgressClient(const ThreadProgressClient&) = delete;
+  ThreadProgressClient& operator=(const ThreadProgressClient&) = delete;
 
  private:
-  bool was_quiet_;
+  bool had_;
+  std::shared_ptr<ProgressClient> previous_;
 };
 
 }  // namespace polycube::core

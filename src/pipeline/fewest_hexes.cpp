@@ -19,6 +19,21 @@ namespace {
 //! that pads them all: the thesis's selective padding adds 11–55 % of global padding's hexes.
 constexpr double kFewestShare = 0.5;
 
+//! The progress client of the candidate made beside the plan: it draws nothing (the pad stage's
+//! bar is the plan's) and cancels the candidate once the plan at λ turned out selective, so that
+//! a padding begun while that plan ran stops rather than keep a core and the stage waiting.
+class Unwanted : public core::ProgressClient {
+ public:
+  explicit Unwanted(const std::atomic<int>& state) : state_(state) {}
+  void begin(const std::string&) override {}
+  void progress(const std::string&, double, bool) override {}
+  void end(const std::string&, bool) override {}
+  bool cancel_requested() override { return state_ == FewestHexesCandidate::kNotWanted; }
+
+ private:
+  const std::atomic<int>& state_;
+};
+
 bool wanted(const RunOptions& o) {
   return o.padding_fewest_too && o.padding == padding::PaddingMode::Selective && o.padding_selection.lambda > 0;
 }
@@ -40,7 +55,7 @@ FewestHexesCandidate::FewestHexesCandidate(const core::HexMesh& hex, const Const
   beside_ = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) > 1;
   if (beside_)
     made_ = std::async(std::launch::async, [this] {
-      const core::QuietProgress quiet;  // the pad stage's bar is the plan at λ's
+      const core::ThreadProgressClient unwanted(std::make_shared<Unwanted>(state_));
       // On this thread alone: the plan at λ is one solver on one core, which a second thread
       // of the candidate's optimization would slow down (and then its padding's optimization
       // gets the other cores when it starts).

@@ -48,12 +48,15 @@ class FewestHexesCandidate {
   //! errors.
   std::optional<padding::PadResult> take(const std::string& how, RunResult& r);
 
+  //! What the candidate knows of the plan at λ: still planning, it padded every facet, or it
+  //! did not (or the stage is over): the candidate is not wanted, and stops.
+  enum State : int { kPlanning, kEveryFacet, kNotWanted };
+
  private:
   struct Made {
     padding::SelectivePlan plan;
     std::optional<padding::PadResult> padded;
   };
-  enum State : int { kPlanning, kEveryFacet, kNotWanted };
 
   //! The plan at λ = 0 and, while it may be wanted, its padded mesh.
   Made make();

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace polycube {
@@ -189,6 +190,38 @@ TEST(Progress, AnInnerTaskCanBeCancelled) {
   inner.set(1);
   c.r->cancel = true;
   EXPECT_THROW(inner.set(2), core::Cancelled);
+}
+
+TEST(Progress, ATaskOnAThreadWithAClientOfItsOwnTalksOnlyToThatClient) {
+  Installed installed;
+  const auto own = std::make_shared<Recorder>();
+  std::thread([&] {
+    const core::ThreadProgressClient scope(own);
+    core::ProgressTask beside("pad, lambda 0", 4);
+    beside.set(2);
+    own->cancel = true;
+    EXPECT_THROW(beside.set(3), core::Cancelled);
+  }).join();
+  EXPECT_EQ(own->begun, std::vector<std::string>{"pad, lambda 0"});
+  EXPECT_EQ(own->ended, std::vector<std::string>{"pad, lambda 0"});
+  EXPECT_TRUE(told(own->fraction, 0.5));
+  EXPECT_TRUE(installed.r->begun.empty());
+  EXPECT_TRUE(installed.r->task.empty());
+
+  // Without a client of its own (nullptr), the thread's tasks talk to none; and once the scope
+  // is left, to the installed one again.
+  std::thread([&] {
+    {
+      const core::ThreadProgressClient none(nullptr);
+      core::ProgressTask quiet("quiet", 2);
+      quiet.set(2);
+      quiet.finish();
+    }
+    core::ProgressTask shown("shown", 2);
+    shown.set(1);
+    shown.finish();
+  }).join();
+  EXPECT_EQ(installed.r->begun, std::vector<std::string>{"shown"});
 }
 
 }  // namespace
